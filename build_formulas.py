@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""Build the certified formulas: derive -> certify -> render into generated/.
+
+Usage examples::
+
+    python build_formulas.py                 # full build into generated/
+    python build_formulas.py --pmax 51       # per-p tables up to p = 51
+    python build_formulas.py --check         # rebuild elsewhere, fail if generated/ differs
+    python build_formulas.py --only model    # certify one derivation (generated/ untouched)
+
+Exit status: 0 success; 1 a certificate failed (the claim is named; the output
+directory is left as it was); 2 bad command line; 3 ``--check`` found
+differences.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import tempfile
+from pathlib import Path
+
+from derivations.certificates import CertificationFailure
+from derivations.options import PMAX_LIMIT, BuildOptions
+from derivations.pipeline import GENERATED, Progress, compare_trees, derive, summary, write_atomically
+from derivations.registry import DERIVATIONS
+
+
+def _pmax(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--pmax {text!r}: not an integer") from None
+    if not 1 <= value <= PMAX_LIMIT:
+        raise argparse.ArgumentTypeError(f"--pmax {value}: must be between 1 and {PMAX_LIMIT}")
+    return value
+
+
+class _OneLineErrors(argparse.ArgumentParser):
+    """Bad input gets one clear line (which option, which value, why), exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
+
+
+def parser() -> argparse.ArgumentParser:
+    ap = _OneLineErrors(
+        prog="build_formulas.py",
+        description="Derive, certify and render the formulas of the Suslov problem.",
+        epilog="Derivations: " + ", ".join(f"{n} ({m.TITLE})" for n, m in DERIVATIONS.items()),
+    )
+    ap.add_argument("--pmax", type=_pmax, default=BuildOptions().pmax,
+                    help=f"largest p for the per-p tables, 1..{PMAX_LIMIT} (default %(default)s); tables "
+                         "of odd-p objects stop at the largest odd p <= pmax, even-p tables at the largest even one")
+    ap.add_argument("--only", nargs="+", metavar="NAME",
+                    help="run only these derivations (and what they require); writes nothing unless --out is given")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="output directory (default: generated/ for a full build)")
+    ap.add_argument("--check", action="store_true",
+                    help="rebuild in a temporary directory and fail if the output directory differs")
+    ap.add_argument("--quiet", action="store_true", help="no progress display")
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = parser()
+    args = ap.parse_args(argv)
+    unknown = [n for n in (args.only or []) if n not in DERIVATIONS]
+    if unknown:
+        ap.error(f"--only {unknown[0]!r}: unknown derivation (known: {', '.join(DERIVATIONS)})")
+    if args.check and args.only:
+        ap.error("--check compares a full build; it cannot be combined with --only")
+    options = BuildOptions(pmax=args.pmax)
+    target = args.out if args.out is not None else (None if args.only else GENERATED)
+
+    try:
+        build = derive(options, args.only, Progress(quiet=args.quiet))
+    except CertificationFailure as failure:
+        print(f"build_formulas.py: {failure}", file=sys.stderr)
+        print("build_formulas.py: nothing was written", file=sys.stderr)
+        return 1
+    print(summary(build))
+
+    if args.check:
+        reference = target
+        with tempfile.TemporaryDirectory(prefix="suslov-check-") as tmp:
+            fresh = Path(tmp) / "generated"
+            write_atomically(build, fresh)
+            differing = compare_trees(fresh, reference)
+        if differing:
+            print(f"build_formulas.py: --check: {reference} differs from a fresh build in: "
+                  + ", ".join(differing), file=sys.stderr)
+            return 3
+        print(f"--check: {reference} is identical to a fresh build")
+        return 0
+    if target is None:
+        print("(--only without --out: certified, nothing written)")
+        return 0
+    write_atomically(build, target)
+    print(f"wrote {target}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

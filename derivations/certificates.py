@@ -1,0 +1,120 @@
+"""Certificate records: what was claimed, where the paper states it, how it was checked.
+
+Every formula the build emits is backed by one or more :class:`Certificate`
+records (DESIGN.md, "Certification").  A certificate names
+
+* the claim in words,
+* the paper's equation label (``ep3.26``, ``gen12``, ... of
+  ``shared/paper/000_c501a623748984eb.txt``), or ``derived`` for a claim the
+  paper does not state,
+* the method (exact zero test in a named canonical domain, or numeric
+  corroboration with mpmath at a stated precision),
+* the outcome: ``pass``, ``fail`` or ``unknown``,
+* the cost in seconds (wall clock; volatile, so it is kept out of the
+  byte-identical outputs, see ``derivations.pipeline``),
+* a deterministic work measure (terms tested, points sampled) and a detail.
+
+Claims about the *paper's printed* forms that turn out false are not build
+failures: they are recorded with ``expect=False`` and reported as errata.  A
+certificate fails the build only when its outcome differs from what the
+derivation expects.
+"""
+from __future__ import annotations
+
+import time
+from contextlib import contextmanager
+from dataclasses import asdict, dataclass, field
+from enum import Enum
+
+
+class Outcome(str, Enum):
+    """Three-valued outcome of a certification attempt."""
+
+    PASS = "pass"
+    FAIL = "fail"
+    UNKNOWN = "unknown"
+
+
+@dataclass
+class Certificate:
+    """One certified (or refuted) claim."""
+
+    claim: str
+    label: str
+    method: str
+    outcome: Outcome
+    seconds: float
+    work: int = 0
+    detail: str = ""
+    derivation: str = ""
+    expected: Outcome = Outcome.PASS
+    key: str = ""
+
+    @property
+    def as_expected(self) -> bool:
+        """True when the outcome is the one the derivation predicted."""
+        return self.outcome == self.expected
+
+    def deterministic_record(self) -> dict:
+        """The fields that are identical across builds (no timing)."""
+        record = asdict(self)
+        record.pop("seconds")
+        record["outcome"] = self.outcome.value
+        record["expected"] = self.expected.value
+        return record
+
+
+class CertificationFailure(RuntimeError):
+    """Raised when a certificate's outcome is not the expected one."""
+
+    def __init__(self, certificate: Certificate):
+        self.certificate = certificate
+        super().__init__(
+            f"certificate failed: [{certificate.label}] {certificate.claim} "
+            f"(outcome {certificate.outcome.value}, expected "
+            f"{certificate.expected.value}; method: {certificate.method}; "
+            f"{certificate.detail})"
+        )
+
+
+@dataclass
+class CertificateLog:
+    """Collects certificates for one build, in the order they were made."""
+
+    certificates: list[Certificate] = field(default_factory=list)
+    derivation: str = ""
+    on_record: object = None  # optional callback(Certificate) for progress display
+
+    def record(self, certificate: Certificate) -> Certificate:
+        certificate.derivation = certificate.derivation or self.derivation
+        if not certificate.key:
+            certificate.key = f"{certificate.derivation}:{len(self.certificates) + 1:03d}"
+        self.certificates.append(certificate)
+        if callable(self.on_record):
+            self.on_record(certificate)
+        if not certificate.as_expected:
+            raise CertificationFailure(certificate)
+        return certificate
+
+    @contextmanager
+    def section(self, derivation: str):
+        """Tag the certificates recorded inside the block with a derivation name."""
+        previous, self.derivation = self.derivation, derivation
+        try:
+            yield self
+        finally:
+            self.derivation = previous
+
+    def total_seconds(self) -> float:
+        return sum(c.seconds for c in self.certificates)
+
+
+@contextmanager
+def stopwatch():
+    """Yield a one-element list that receives the elapsed wall time in seconds."""
+    elapsed = [0.0]
+    start = time.perf_counter()
+    try:
+        yield elapsed
+    finally:
+        elapsed[0] = time.perf_counter() - start

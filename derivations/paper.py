@@ -1,0 +1,137 @@
+"""The paper's printed formulas, transcribed once, with their equation labels.
+
+Source: ``shared/paper/000_c501a623748984eb.txt`` (Fedorov, Maciejewski,
+Przybylska, *The Poisson equations in the nonholonomic Suslov problem*).
+Nothing here is used to *produce* an emitted formula: the derivations derive,
+then compare with these transcriptions, and the comparison goes into the
+errata table.  Each entry keeps the printed LaTeX verbatim (for the table) and
+a SymPy transcription (for the comparison).
+
+Square roots printed as ``sqrt(I22/I11)`` and ``sqrt(I11/I22)`` are written
+with ``r = sqrt(I11*I22)`` (``I11, I22 > 0``): ``sqrt(I22/I11) = r/I11`` and
+``sqrt(I11/I22) = r/I22``; the printed ``+-`` is ``r -> -r``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from .differential import S, T
+from .symbols import I11, I13, I22, I23, I33, c, d, g1, g2, g3, p, r, w1, w2
+
+
+@dataclass(frozen=True)
+class Printed:
+    label: str
+    latex: str
+    where: str
+
+
+EP326 = Printed(
+    "ep3.26",
+    r"\frac{d}{dt}(\mathbb I\omega)=\langle\mathbb I\omega,a\rangle\,\omega\times\mathbb I^{-1}a",
+    "section 1",
+)
+
+# gen12: omega1' = I22 (I13 w1 + I23 w2) w2,  omega2' = -I11 (I13 w1 + I23 w2) w1
+GEN12 = Printed(
+    "gen12",
+    r"\dot\omega_1=I_{22}(I_{13}\omega_1+I_{23}\omega_2)\omega_2,\quad"
+    r"\dot\omega_2=-I_{11}(I_{13}\omega_1+I_{23}\omega_2)\omega_1",
+    "section 2",
+)
+GEN12_FIELD = {
+    w1: I22 * (I13 * w1 + I23 * w2) * w2,
+    w2: -I11 * (I13 * w1 + I23 * w2) * w1,
+}
+
+WHOLE = Printed(
+    "eq:whole",
+    r"\dot\gamma_1=-\omega_2\gamma_3,\ \dot\gamma_2=\omega_1\gamma_3,\ "
+    r"\dot\gamma_3=\omega_2\gamma_1-\omega_1\gamma_2",
+    "section 2",
+)
+WHOLE_FIELD = {g1: -w2 * g3, g2: w1 * g3, g3: w2 * g1 - w1 * g2}
+
+# eq:o12 / c's with A = 1, written in T = tanh t, S = sech t:
+# (e^t - e^-t)/(e^t + e^-t) = T, 1/(e^t + e^-t) = S/2.
+_D = I13**2 * I22 + I23**2 * I11
+C_S = Printed(
+    "c's",
+    r"a=\frac{I_{23}}{D},\ b=-a\frac{I_{13}}{I_{23}},\ c_1=\pm\frac{2I_{13}}{D}\sqrt{\frac{I_{22}}{I_{11}}},\ "
+    r"c_2=\pm\frac{2I_{23}}{D}\sqrt{\frac{I_{11}}{I_{22}}},\ D=I_{13}^2I_{22}+I_{23}^2I_{11}",
+    "section 2, Remark 2.1",
+)
+
+
+def printed_o12(sign1: int = 1, sign2: int = 1) -> dict:
+    """Printed general solution; ``sign1``/``sign2`` are the two printed ``+-``."""
+    a = I23 / _D
+    b = -a * I13 / I23
+    c1 = sign1 * 2 * I13 / _D * (r / I11)
+    c2 = sign2 * 2 * I23 / _D * (r / I22)
+    return {w1: a * T + c1 / 2 * S, w2: b * T + c2 / 2 * S}
+
+
+ENLEV = Printed("eq:enlev", r"F_1=\frac{1}{I_{13}^2I_{22}+I_{23}^2I_{11}}", "section 2")
+ENLEV_VALUE = 1 / _D
+
+# omegas: w1 = a tanh t, w2 = -2ac/(e^t+e^-t) = -a c sech t,
+# a = (I22 I33 - I23^2)/I23, c = sqrt(I11/I22).
+OMEGAS = Printed(
+    "omegas",
+    r"\omega_1=a\tanh t,\ \omega_2=-ac\,\mathrm{sech}\,t,\ a=\frac{I_{22}I_{33}-I_{23}^2}{I_{23}},\ "
+    r"c=\sqrt{I_{11}/I_{22}}",
+    "section 4",
+)
+OMEGAS_A = (I22 * I33 - I23**2) / I23
+
+# eq:sysfin with the printed +- in the first equation
+SYSFIN = Printed(
+    "eq:sysfin",
+    r"\dot\omega_1=\pm\frac{d}{p(d^2+1)}\omega_2^2,\ \dot\omega_2=-\frac{d}{p}\omega_1\omega_2",
+    "section 4",
+)
+
+
+def printed_sysfin(sign: int) -> dict:
+    return {w1: sign * d / (p * (d**2 + 1)) * w2**2, w2: -d / p * w1 * w2}
+
+
+CCALKI = Printed(
+    "eq:ccalki",
+    r"F_1=(d^2+1)\omega_1^2+\omega_2^2,\ F_2=\gamma_1^2+\gamma_2^2+\gamma_3^2",
+    "section 4",
+)
+CCALKI_F1 = (d**2 + 1) * w1**2 + w2**2
+CCALKI_F2 = g1**2 + g2**2 + g3**2
+
+F1_VALUE_SENTENCE = Printed(
+    "eq:ccalki (text)",
+    r"\text{on the solutions one has } F_1=a^2c^2=\ \text{(sentence breaks off)}",
+    "section 4, after eq:ccalki",
+)
+
+LIMIT_TEXT = Printed(
+    "omegas (text)",
+    r"t\to\pm\infty:\ \text{rotation about }(1,0,0)\text{ with angular velocity }\mp a",
+    "section 4, steady-state rotations",
+)
+
+NECC1 = Printed(
+    "eq:necc1",
+    r"I_{13}=0,\ \frac{I_{11}-I_{22}}{I_{11}I_{22}(I_{11}I_{22}I_{33}-1)}=p^2",
+    "Theorem 3.1",
+)
+NECC1_P2 = (I11 - I22) / (I11 * I22 * (I11 * I22 * I33 - 1))
+
+AM2 = Printed(
+    "eq:am2",
+    r"A_0=\begin{bmatrix}0&0&-\frac{ip\sqrt{d^2+1}}{d}\\0&0&\frac{p}{d}\\"
+    r"\frac{ip\sqrt{d^2+1}}{d}&-\frac{p}{d}&0\end{bmatrix}",
+    "section 3.2",
+)
+AM2_MATRIX = sp.Matrix(
+    [[0, 0, -sp.I * p * c / d], [0, 0, p / d], [sp.I * p * c / d, -p / d, 0]]
+)

@@ -1,0 +1,223 @@
+"""derive -> certify -> render, with an all-or-nothing write of ``generated/``.
+
+The pipeline runs the derivations of ``derivations.registry`` in dependency
+order, collecting certificates in one :class:`CertificateLog`.  A certificate
+whose outcome differs from the expected one raises
+:class:`CertificationFailure` at once, naming the claim; nothing is rendered.
+
+Rendering writes every output into a fresh temporary directory beside the
+target and only then swaps it into place, so the target is either the old
+tree or the complete new one, never a mixture.
+
+Determinism: the committed outputs carry no timing, no timestamp and no
+absolute path.  The cost of each certificate (seconds) is volatile and goes
+into ``certificate_costs.json`` / ``certificate_costs.tex`` only; those two
+files are ignored by git, by ``--check`` and by the reproducibility test, and
+the LaTeX document includes the cost table when it is present.
+"""
+from __future__ import annotations
+
+import filecmp
+import json
+import os
+import shutil
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .certificates import CertificateLog, Outcome
+from .options import BuildOptions
+from .registry import DERIVATIONS, resolve
+from .render import python_source, render
+from .symbols import w1, w2
+
+ROOT = Path(__file__).resolve().parent.parent
+GENERATED = ROOT / "generated"
+VOLATILE = ("certificate_costs.json", "certificate_costs.tex")
+
+# (template, output file, derivations the output needs)
+OUTPUTS = (
+    ("init.py.j2", "__init__.py", ()),
+    ("suslov_formulas.py.j2", "suslov_formulas.py", ("model", "special_case")),
+    ("suslov_formulas.tex.j2", "suslov_formulas.tex", ()),
+    ("formulas_body.tex.j2", "formulas_body.tex", ()),
+    ("certificates_table.tex.j2", "certificates_table.tex", ()),
+    ("errata_table.tex.j2", "errata_table.tex", ()),
+    ("per_p_table.tex.j2", "per_p_table.tex", ("special_case",)),
+    ("certificate_costs.tex.j2", "certificate_costs.tex", ()),
+)
+
+
+@dataclass
+class Build:
+    options: BuildOptions
+    names: list[str]
+    log: CertificateLog
+    results: dict = field(default_factory=dict)
+    seconds: dict = field(default_factory=dict)
+
+
+class Progress:
+    """One line per derivation; a live counter when stderr is a terminal."""
+
+    def __init__(self, stream=sys.stderr, quiet: bool = False):
+        self.stream, self.quiet = stream, quiet
+        self.live = hasattr(stream, "isatty") and stream.isatty()
+        self.count = 0
+
+    def start(self, index: int, total: int, name: str):
+        self.prefix, self.count, self.t0 = f"[{index}/{total}] {name}", 0, time.perf_counter()
+        if not self.quiet and self.live:
+            self.stream.write(f"{self.prefix} ...")
+            self.stream.flush()
+
+    def certificate(self, cert):
+        self.count += 1
+        if not self.quiet and self.live:
+            self.stream.write(f"\r{self.prefix}: {self.count} certificates, {time.perf_counter() - self.t0:.1f} s")
+            self.stream.flush()
+
+    def done(self):
+        if not self.quiet:
+            line = f"{self.prefix}: {self.count} certificates, {time.perf_counter() - self.t0:.2f} s"
+            self.stream.write(("\r" if self.live else "") + line + "\n")
+            self.stream.flush()
+
+
+def derive(options: BuildOptions, only: list[str] | None = None, progress: Progress | None = None) -> Build:
+    """Run and certify the derivations (raises CertificationFailure)."""
+    names = resolve(only)
+    progress = progress or Progress(quiet=True)
+    log = CertificateLog(on_record=progress.certificate)
+    build = Build(options, names, log)
+    for index, name in enumerate(names, 1):
+        module = DERIVATIONS[name]
+        progress.start(index, len(names), name)
+        start = time.perf_counter()
+        with log.section(name):
+            required = [build.results[req] for req in getattr(module, "REQUIRES", ())]
+            build.results[name] = module.run(log, options, *required)
+        build.seconds[name] = time.perf_counter() - start
+        progress.done()
+    return build
+
+
+def _code(build: Build) -> dict:
+    code = {}
+    if "special_case" in build.results:
+        sol = build.results["special_case"].exports["solution"]
+        code["omega"] = [python_source(sol[w1]), python_source(sol[w2])]
+    if "model" in build.results:
+        sol = build.results["model"].exports["solution"]
+        code["omega_general"] = [python_source(sol[w1]), python_source(sol[w2])]
+    return code
+
+
+def context(build: Build) -> dict:
+    """Everything the templates see (deterministic apart from ``costs``)."""
+    certificates = [c.deterministic_record() for c in build.log.certificates]
+    results = [build.results[name] for name in build.names]
+    errata = [e for r in results for e in r.errata]
+    by_key = {c["key"]: c for c in certificates}
+    return {
+        "pmax": build.options.pmax,
+        "odd_ps": build.options.odd_p_values(),
+        "even_ps": build.options.even_p_values(),
+        "names": build.names,
+        "titles": {name: DERIVATIONS[name].TITLE for name in build.names},
+        "results": results,
+        "certificates": certificates,
+        "certificate_by_key": by_key,
+        "errata": errata,
+        "per_p": build.results["special_case"].exports["per_p"] if "special_case" in build.results else [],
+        "code": _code(build),
+        "counts": {o.value: sum(1 for c in build.log.certificates if c.outcome is o) for o in Outcome},
+        "refuted": sum(1 for c in build.log.certificates if c.expected is Outcome.FAIL),
+        "costs": [(c.key, c.claim, c.seconds) for c in build.log.certificates],
+        "total_seconds": build.log.total_seconds(),
+    }
+
+
+def certificate_document(build: Build) -> dict:
+    ctx = context(build)
+    return {
+        "pmax": ctx["pmax"],
+        "derivations": ctx["names"],
+        "certificates": ctx["certificates"],
+        "errata": [vars(e) for e in ctx["errata"]],
+        "notes": {r.name: r.notes for r in ctx["results"]},
+    }
+
+
+def render_into(build: Build, directory: Path) -> list[str]:
+    """Write every output whose derivations ran into ``directory``."""
+    ctx = context(build)
+    written = []
+    for template, filename, needs in OUTPUTS:
+        if all(n in build.results for n in needs):
+            (directory / filename).write_text(render(template, ctx), encoding="utf-8")
+            written.append(filename)
+    (directory / "certificates.json").write_text(
+        json.dumps(certificate_document(build), indent=1, sort_keys=True) + "\n", encoding="utf-8")
+    (directory / "certificate_costs.json").write_text(
+        json.dumps({k: round(s, 6) for k, _, s in ctx["costs"]}, indent=1, sort_keys=True) + "\n",
+        encoding="utf-8")
+    return written + ["certificates.json", "certificate_costs.json"]
+
+
+def write_atomically(build: Build, target: Path) -> None:
+    """Render into a temporary sibling, then swap it into ``target``."""
+    target = Path(target)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.new-", dir=target.parent))
+    try:
+        render_into(build, staging)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    backup = None
+    if target.exists():
+        backup = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
+        os.rmdir(backup)
+        os.rename(target, backup)
+    try:
+        os.rename(staging, target)
+    except BaseException:
+        if backup is not None:
+            os.rename(backup, target)
+        raise
+    if backup is not None:
+        shutil.rmtree(backup, ignore_errors=True)
+
+
+def compare_trees(expected: Path, actual: Path) -> list[str]:
+    """Files that differ, are missing or are extra (volatile files ignored)."""
+    def files(root: Path) -> set[str]:
+        if not root.exists():
+            return set()
+        return {str(p.relative_to(root)) for p in root.rglob("*")
+                if p.is_file() and p.name not in VOLATILE and "__pycache__" not in p.parts}
+
+    left, right = files(expected), files(actual)
+    differing = sorted(left ^ right)
+    differing += sorted(f for f in left & right if not filecmp.cmp(expected / f, actual / f, shallow=False))
+    return differing
+
+
+def summary(build: Build, top: int = 5) -> str:
+    """Certificate summary with costs, for the console."""
+    certs = build.log.certificates
+    lines = [f"{len(certs)} certificates: " + ", ".join(
+        f"{sum(1 for c in certs if c.outcome is o)} {o.value}" for o in Outcome)]
+    refuted = [c for c in certs if c.expected is Outcome.FAIL]
+    if refuted:
+        lines.append(f"{len(refuted)} printed forms refuted as predicted (see the errata table)")
+    for name in build.names:
+        n = sum(1 for c in certs if c.derivation == name)
+        lines.append(f"  {name:<16} {n:4d} certificates  {build.seconds[name]:8.3f} s")
+    lines.append(f"costliest {min(top, len(certs))}:")
+    for c in sorted(certs, key=lambda c: -c.seconds)[:top]:
+        lines.append(f"  {c.seconds:8.4f} s  [{c.label}] {c.claim}")
+    return "\n".join(lines)

@@ -1,0 +1,39 @@
+"""The derivations the build knows, in dependency order.
+
+Each entry names a module with ``NAME``, ``TITLE``, optional ``REQUIRES`` and
+``run(log, options, *required_results) -> DerivationResult``.  Later issues add
+their modules here; ``--only`` resolves names against this table.
+"""
+from __future__ import annotations
+
+from types import ModuleType
+
+from . import model, special_case
+
+DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case)}
+
+
+def requirements(name: str) -> tuple[str, ...]:
+    return tuple(getattr(DERIVATIONS[name], "REQUIRES", ()))
+
+
+def resolve(only: list[str] | None) -> list[str]:
+    """Names to run, requirements first, in registry order.
+
+    Raises ``KeyError`` with the unknown name and the known ones.
+    """
+    if not only:
+        return list(DERIVATIONS)
+    wanted: set[str] = set()
+
+    def add(name: str):
+        if name not in DERIVATIONS:
+            raise KeyError(f"unknown derivation {name!r}; known: {', '.join(DERIVATIONS)}")
+        if name not in wanted:
+            wanted.add(name)
+            for req in requirements(name):
+                add(req)
+
+    for name in only:
+        add(name)
+    return [name for name in DERIVATIONS if name in wanted]

@@ -1,0 +1,36 @@
+"""What a derivation hands to the renderer: formulas, errata, exports, notes."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from .certificates import Certificate
+from .errata import Erratum
+
+
+@dataclass
+class DerivedFormula:
+    """A derived, certified formula as it appears in the LaTeX document."""
+
+    key: str
+    label: str
+    title: str
+    latex: str
+    certificates: list[str] = field(default_factory=list)
+
+
+@dataclass
+class DerivationResult:
+    name: str
+    formulas: list[DerivedFormula] = field(default_factory=list)
+    errata: list[Erratum] = field(default_factory=list)
+    exports: dict = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+
+    def formula(self, key: str, label: str, title: str, latex: str | sp.Basic,
+                *certificates: Certificate) -> DerivedFormula:
+        text = latex if isinstance(latex, str) else sp.latex(latex)
+        item = DerivedFormula(key, label, title, text, [c.key for c in certificates])
+        self.formulas.append(item)
+        return item

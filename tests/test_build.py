@@ -1,0 +1,130 @@
+"""The build: deterministic, committed tree up to date, fails loudly and atomically."""
+import hashlib
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+import build_formulas
+from derivations import model
+from derivations.certificates import CertificationFailure
+from derivations.differential import T
+from derivations.options import BuildOptions
+from derivations.pipeline import GENERATED, ROOT, VOLATILE, compare_trees, derive, write_atomically
+from derivations.symbols import w1
+
+
+def tree_digest(root: Path) -> str:
+    h = hashlib.sha256()
+    for path in sorted(p for p in root.rglob("*") if p.is_file() and "__pycache__" not in p.parts):
+        h.update(str(path.relative_to(root)).encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()
+
+
+def test_two_builds_are_byte_identical(tmp_path, default_build):
+    write_atomically(default_build, tmp_path / "a")
+    write_atomically(derive(BuildOptions()), tmp_path / "b")
+    assert compare_trees(tmp_path / "a", tmp_path / "b") == []
+
+
+def test_committed_generated_equals_default_build(tmp_path, default_build):
+    write_atomically(default_build, tmp_path / "fresh")
+    assert compare_trees(tmp_path / "fresh", GENERATED) == [], "run: python build_formulas.py"
+
+
+def test_volatile_costs_are_written_but_not_compared(tmp_path, default_build):
+    write_atomically(default_build, tmp_path / "out")
+    for name in VOLATILE:
+        assert (tmp_path / "out" / name).exists()
+        (tmp_path / "out" / name).write_text("changed")
+    assert compare_trees(tmp_path / "out", GENERATED) == []
+
+
+def test_perturbed_omega_fails_the_build_and_leaves_output_untouched(tmp_path, monkeypatch, capsys):
+    out = tmp_path / "generated"
+    write_atomically(derive(BuildOptions(pmax=3)), out)
+    before = tree_digest(out)
+    original = model.derive_general_solution
+
+    def perturbed():
+        solution = dict(original())
+        solution[w1] = solution[w1] * (1 + sp.Rational(1, 1000) * T)
+        return solution
+
+    monkeypatch.setattr(model, "derive_general_solution", perturbed)
+    with pytest.raises(CertificationFailure, match="derived omega"):
+        derive(BuildOptions(pmax=3))
+    status = build_formulas.main(["--pmax", "3", "--out", str(out), "--quiet"])
+    assert status == 1
+    assert "derived omega(t) solves the reduced Euler equations" in capsys.readouterr().err
+    assert tree_digest(out) == before
+
+
+def test_failure_while_rendering_leaves_output_untouched(tmp_path, monkeypatch):
+    out = tmp_path / "generated"
+    build = derive(BuildOptions(pmax=2))
+    write_atomically(build, out)
+    before = tree_digest(out)
+    import derivations.pipeline as pipeline
+
+    def broken(template, context):
+        if template.startswith("errata"):
+            raise RuntimeError("template exploded")
+        return "partial"
+
+    monkeypatch.setattr(pipeline, "render", broken)
+    with pytest.raises(RuntimeError):
+        write_atomically(build, out)
+    assert tree_digest(out) == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["generated"]  # no staging left behind
+
+
+def run_cli(*args):
+    return subprocess.run([sys.executable, "build_formulas.py", *args], cwd=ROOT, capture_output=True, text=True)
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--pmax", "0"], "--pmax"),
+    (["--pmax", "seven"], "--pmax"),
+    (["--pmax", "100000"], "--pmax"),
+    (["--only", "nonsense"], "nonsense"),
+    (["--frobnicate"], "--frobnicate"),
+])
+def test_bad_command_line_is_one_clear_line_and_touches_nothing(args, needle):
+    before = tree_digest(GENERATED)
+    proc = run_cli(*args)
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and needle in lines[0]
+    assert tree_digest(GENERATED) == before
+
+
+def test_check_passes_on_committed_tree():
+    proc = run_cli("--check", "--quiet")
+    assert proc.returncode == 0, proc.stderr
+    assert "identical" in proc.stdout
+
+
+def test_check_detects_a_difference(tmp_path, default_build):
+    write_atomically(default_build, tmp_path / "g")
+    (tmp_path / "g" / "errata_table.tex").write_text("tampered\n")
+    assert build_formulas.main(["--check", "--quiet", "--out", str(tmp_path / "g")]) == 3
+
+
+def test_only_certifies_requirements_and_writes_nothing():
+    before = tree_digest(GENERATED)
+    proc = run_cli("--only", "special_case", "--quiet")
+    assert proc.returncode == 0, proc.stderr
+    assert "model" in proc.stdout and "special_case" in proc.stdout
+    assert tree_digest(GENERATED) == before
+
+
+def test_pmax_splits_parities():
+    options = BuildOptions(pmax=8)
+    assert options.odd_p_values() == [1, 3, 5, 7] and options.even_p_values() == [2, 4, 6, 8]
+    rows = derive(options, ["special_case"]).results["special_case"].exports["per_p"]
+    assert [r["p"] for r in rows] == list(range(1, 9))
+    assert [r["parity"] for r in rows[:2]] == ["odd", "even"]
