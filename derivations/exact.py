@@ -167,3 +167,22 @@ def certify_zero(
     return log.record(
         Certificate(claim, label, method, outcome, elapsed[0], work, detail, expected=expect)
     )
+
+
+def certify_polys_zero(log: CertificateLog, claim: str, label: str, polys, domain_name: str, *,
+                       expect: Outcome = Outcome.PASS, seconds: float = 0.0) -> Certificate:
+    """Record the zero test of polynomials already held in a canonical domain.
+
+    For ``sympy.Poly`` objects over a field such as ``QQ(d)``: their dense
+    representation is canonical, so ``is_zero`` decides the identity.
+    ``seconds`` adds the cost of building the polynomials.
+    """
+    polys = list(polys)
+    with stopwatch() as elapsed:
+        nonzero = [i for i, poly in enumerate(polys) if not poly.is_zero]
+    work = sum(len(poly.terms()) for poly in polys)
+    outcome = Outcome.FAIL if nonzero else Outcome.PASS
+    detail = (f"entry {nonzero[0]} has {len(polys[nonzero[0]].terms())} non-zero terms" if nonzero
+              else f"{len(polys)} polynomial(s) identically 0")
+    return log.record(Certificate(claim, label, f"exact zero test in {domain_name}", outcome,
+                                  elapsed[0] + seconds, work, detail, expected=expect))

@@ -135,3 +135,26 @@ AM2 = Printed(
 AM2_MATRIX = sp.Matrix(
     [[0, 0, -sp.I * p * c / d], [0, 0, p / d], [sp.I * p * c / d, -p / d, 0]]
 )
+
+P23 = Printed(
+    "eq:p23",
+    r"P_3:=\frac{d}{p}\Big(\frac{1}{d^2+1}\frac{\partial P_1}{\partial\omega_1}\omega_2-"
+    r"\frac{\partial P_1}{\partial\omega_2}\omega_1\Big),\ P_2:=-\frac{d}{p}\frac{\omega_2}{\omega_1}"
+    r"\Big(\frac{1}{d^2+1}\frac{\partial P_3}{\partial\omega_1}\omega_2-\frac{\partial P_3}{\partial\omega_2}"
+    r"\omega_1\Big)+\frac{\omega_2}{\omega_1}P_1",
+    "Theorem 6.2",
+)
+
+POL_SOL = Printed(
+    "pol_sol",
+    r"\mathcal F_1(z)=1+\sum_{j=1}^{(p-1)/2}\frac{(2j-1)!!}{(2j)!!}\frac{d^{2j}(p^2-1)\cdots(p^2-(2j-1)^2)}"
+    r"{(d^2+p^2)\cdots((2j-1)d^2+p^2)}z^j",
+    "section 5.1",
+)
+
+P1_INTEGRAL = Printed(
+    "p = 1 integral",
+    r"F_3=d\omega_1\gamma_1+\frac{d}{d^2+1}\omega_2\gamma_2-\frac{d^2}{d^2+1}\omega_2\gamma_3",
+    "section 6.3",
+)
+P1_INTEGRAL_F3 = d * w1 * g1 + d / (d**2 + 1) * w2 * g2 - d**2 / (d**2 + 1) * w2 * g3

@@ -40,12 +40,13 @@ VOLATILE = ("certificate_costs.json", "certificate_costs.tex")
 # (template, output file, derivations the output needs)
 OUTPUTS = (
     ("init.py.j2", "__init__.py", ()),
-    ("suslov_formulas.py.j2", "suslov_formulas.py", ("model", "special_case")),
+    ("suslov_formulas.py.j2", "suslov_formulas.py", ("model", "special_case", "first_integrals")),
     ("suslov_formulas.tex.j2", "suslov_formulas.tex", ()),
     ("formulas_body.tex.j2", "formulas_body.tex", ()),
     ("certificates_table.tex.j2", "certificates_table.tex", ()),
     ("errata_table.tex.j2", "errata_table.tex", ()),
     ("per_p_table.tex.j2", "per_p_table.tex", ("special_case",)),
+    ("integrals_table.tex.j2", "integrals_table.tex", ("first_integrals",)),
     ("certificate_costs.tex.j2", "certificate_costs.tex", ()),
 )
 
@@ -133,6 +134,9 @@ def context(build: Build) -> dict:
         "errata": errata,
         "per_p": build.results["special_case"].exports["per_p"] if "special_case" in build.results else [],
         "code": _code(build),
+        "integral_ps": [r["p"] for r in build.results["first_integrals"].exports["rows"]]
+        if "first_integrals" in build.results else [],
+        "integral_rows": build.results["first_integrals"].exports["rows"] if "first_integrals" in build.results else [],
         "counts": {o.value: sum(1 for c in build.log.certificates if c.outcome is o) for o in Outcome},
         "refuted": sum(1 for c in build.log.certificates if c.expected is Outcome.FAIL),
         "costs": [(c.key, c.claim, c.seconds) for c in build.log.certificates],

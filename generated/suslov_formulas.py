@@ -26,9 +26,12 @@ from pathlib import Path
 import mpmath
 import numpy as np
 
-__all__ = ["omega", "omega_mp", "omega_general", "omega_general_mp", "load_certificates", "PMAX"]
+__all__ = ["omega", "omega_mp", "omega_general", "omega_general_mp", "first_integral", "first_integral_mp",
+           "first_integral_coefficients", "load_certificates", "PMAX", "INTEGRAL_PS"]
 
 PMAX = 15
+# odd p whose polynomial first integral was certified by this build
+INTEGRAL_PS = (1, 3, 5, 7, 9, 11, 13, 15)
 CERTIFICATES_FILE = Path(__file__).with_name("certificates.json")
 
 
@@ -188,6 +191,141 @@ def omega_general_mp(t, I11, I22, I13, I23, branch=1, dps=50):
         r = _branch(branch) * mpmath.sqrt(I11 * I22)
         w1, w2 = _omega_general(_MP, _real_scalar("t", mpmath.mpf(t)), I11, I22, I13, I23, r)
         return +w1, +w2
+
+
+def _odd_p(p):
+    if isinstance(p, bool) or not isinstance(p, (int, np.integer)):
+        raise ValueError(f"p={p!r}: must be an odd positive integer (the integral exists for odd p only)")
+    p = int(p)
+    if p < 1 or p % 2 == 0:
+        raise ValueError(f"p={p}: must be an odd positive integer (even p: the Poisson equations are not "
+                         "Liouville-integrable, no polynomial integral)")
+    if p not in INTEGRAL_PS:
+        raise ValueError(f"p={p}: outside the certified range of this build (odd p <= {max(INTEGRAL_PS)}); "
+                         "rebuild with build_formulas.py --pmax N")
+    return p
+
+
+def _homogeneous_L(a, e):
+    """(L P) for P = sum a[k] w1^(n-k) w2^k, L = w2/(d^2+1) d/dw1 - w1 d/dw2, e = d^2+1."""
+    n = len(a) - 1
+    return [((n - k + 1) * a[k - 1] / e if k >= 1 else 0 * a[0]) - ((k + 1) * a[k + 1] if k < n else 0 * a[0])
+            for k in range(n + 1)]
+
+
+def _integral_coefficients(p, d, one):
+    """Coefficients of P1, P2, P3 (lists a[k] of w1^(p-k) w2^k) in the number type of ``one``.
+
+    The certified construction of derivations/first_integrals.py:
+    P1 = w1 F1^((p-1)/2) F(w2^2/F1), F(z) = sum c_j z^j with
+    c_{j+1}/c_j = (2j+1)/(2j+2) ((2j+1)^2 - p^2) d^2 / ((2j+1)^2 d^2 + p^2), c_0 = 1;
+    P3 = -(d/p) L P1;  P2 = (w2/w1) (P1 - (d/p) L P3).
+    """
+    J = (p - 1) // 2
+    dd = d * d
+    e = dd + one
+    c = [one]
+    for j in range(J):
+        c.append(c[-1] * (2 * j + 1) * ((2 * j + 1) ** 2 - p * p) * dd / ((2 * j + 2) * ((2 * j + 1) ** 2 * dd + p * p)))
+    q = [0 * one] * (2 * J + 1)
+    for j in range(J + 1):
+        m = J - j
+        binom = 1
+        for i in range(m + 1):
+            q[2 * (j + i)] += c[j] * binom * e ** (m - i)
+            binom = binom * (m - i) // (i + 1)
+    P1 = q + [0 * one]
+    k = d / p
+    P3 = [-k * v for v in _homogeneous_L(P1, e)]
+    N = [a - k * b for a, b in zip(P1, _homogeneous_L(P3, e))]
+    P2 = [0 * one] + N[:-1]  # (w2/w1) N; N's w2^p coefficient vanishes (certified)
+    return P1, P2, P3, N[-1]
+
+
+def first_integral_coefficients(p, d):
+    """Exact coefficients of P1, P2, P3 for odd p and rational d.
+
+    ``d`` is an int, a ``fractions.Fraction`` or a string such as ``"3/2"``.
+    Returns ``{"P1": [...], "P2": [...], "P3": [...]}`` with ``P_i = sum_k
+    a[k] omega1^(p-k) omega2^k`` and ``a[k]`` exact ``Fraction``s.
+    Normalisation (paper eq:p1): P1 = omega1 Q, Q = F1^((p-1)/2) F(omega2^2/F1),
+    F(0) = 1, so P1 = omega1^p (d^2+1)^((p-1)/2) + ...; not rescaled.
+    """
+    from fractions import Fraction
+
+    p = _odd_p(p)
+    try:
+        d = Fraction(d)
+    except (TypeError, ValueError):
+        raise ValueError(f"d={d!r}: must be a rational number (int, Fraction or 'a/b')") from None
+    if d <= 0:
+        raise ValueError(f"d={d}: must be > 0")
+    P1, P2, P3, rest = _integral_coefficients(p, d, Fraction(1))
+    if rest != 0:
+        raise ArithmeticError("internal: omega1 does not divide the numerator of P2")
+    return {"P1": P1, "P2": P2, "P3": P3}
+
+
+def _horner_homogeneous(a, u1, u2):
+    """sum a[k] u1^(n-k) u2^k for |u1|, |u2| <= 1 with max(|u1|, |u2|) = 1, Horner in the smaller ratio."""
+    n = len(a) - 1
+    first = np.abs(u1) >= np.abs(u2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(first, u2 / np.where(first, u1, 1.0), u1 / np.where(first, 1.0, u2))
+    h_first = np.zeros_like(r)
+    h_second = np.zeros_like(r)
+    for k in range(n, -1, -1):
+        h_first = h_first * r + a[k]
+        h_second = h_second * r + a[n - k]
+    return np.where(first, h_first * u1**n, h_second * u2**n)
+
+
+def first_integral(p, d, omega1, omega2, gamma1, gamma2, gamma3):
+    """Polynomial first integral F3 = P1 g1 + P2 g2 + P3 g3 of eq:sysfin + Poisson (odd p; Theorem 6.2).
+
+    P1, P2, P3 are homogeneous of degree p in (omega1, omega2):
+    P1 = omega1 F1^((p-1)/2) F(omega2^2/F1) with F1 = (d^2+1) omega1^2 + omega2^2
+    and F the terminating 3F2(1/2, (1+p)/2, (1-p)/2; (d-ip)/(2d), (d+ip)/(2d); z)
+    (leading coefficient as it comes out: F(0) = 1), P3 = -(d/p) L P1,
+    P2 = (omega2/omega1)(P1 - (d/p) L P3), L = omega2/(d^2+1) d/domega1 - omega1 d/domega2.
+    (The printed eq:p23 has the wrong sign in P3 and pol_sol wrong coefficients: see the errata.)
+
+    Arguments broadcast like NumPy arrays; returns float64.  Evaluated as
+    s^p sum_i P_i(omega/s) gamma_i with s = max(|omega1|, |omega2|) and Horner's
+    rule in the ratio of modulus <= 1.  Raises ValueError for even, non-integer
+    or uncertified p, d <= 0, non-finite input, and when s^p overflows float64
+    (use first_integral_mp then).
+    """
+    p = _odd_p(p)
+    d = float(_real_scalar("d", d, positive=True))
+    arrays = np.broadcast_arrays(*(_times(v) for v in (omega1, omega2, gamma1, gamma2, gamma3)))
+    w1, w2, g1, g2, g3 = arrays
+    P1, P2, P3, _ = _integral_coefficients(p, mpmath.mpf(d), mpmath.mpf(1))
+    coefficients = [[float(v) for v in P] for P in (P1, P2, P3)]
+    s = np.maximum(np.abs(w1), np.abs(w2))
+    safe = np.where(s > 0, s, 1.0)
+    u1, u2 = w1 / safe, w2 / safe
+    value = sum(_horner_homogeneous(a, u1, u2) * g for a, g in zip(coefficients, (g1, g2, g3)))
+    with np.errstate(over="raise"):
+        try:
+            scale = safe ** p
+        except FloatingPointError:
+            raise ValueError(f"max(|omega1|, |omega2|)^p overflows float64 for p={p}: use first_integral_mp") from None
+    return np.where(s > 0, value * scale, 0.0)
+
+
+def first_integral_mp(p, d, omega1, omega2, gamma1, gamma2, gamma3, dps=50):
+    """mpmath twin of :func:`first_integral` (scalars), at ``dps`` digits."""
+    p = _odd_p(p)
+    with mpmath.workdps(dps):
+        d = _real_scalar("d", mpmath.mpf(d), positive=True)
+        w1, w2, g1, g2, g3 = (_real_scalar(n, mpmath.mpf(v)) for n, v in
+                              zip(("omega1", "omega2", "gamma1", "gamma2", "gamma3"),
+                                  (omega1, omega2, gamma1, gamma2, gamma3)))
+        total = mpmath.mpf(0)
+        for P, g in zip(_integral_coefficients(p, d, mpmath.mpf(1))[:3], (g1, g2, g3)):
+            total += g * mpmath.fsum(a * w1 ** (p - k) * w2**k for k, a in enumerate(P))
+        return +total
 
 
 def load_certificates():
