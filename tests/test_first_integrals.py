@@ -114,3 +114,14 @@ def test_bad_d_and_input():
 def test_construct_rejects_even_p():
     with pytest.raises(ValueError, match="odd"):
         fi.construct(4)
+
+
+def test_pmax_101_certifies_every_odd_p():
+    from derivations.options import BuildOptions
+    from derivations.pipeline import derive
+
+    build = derive(BuildOptions(pmax=101), ["first_integrals"])
+    rows = build.results["first_integrals"].exports["rows"]
+    assert [r["p"] for r in rows] == list(range(1, 102, 2))
+    integral_certs = [c for c in build.log.certificates if c.label == "eq:liniowiec"]
+    assert len(integral_certs) == 51 and all(c.outcome.value == "pass" for c in integral_certs)
