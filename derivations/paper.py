@@ -158,3 +158,40 @@ P1_INTEGRAL = Printed(
     "section 6.3",
 )
 P1_INTEGRAL_F3 = d * w1 * g1 + d / (d**2 + 1) * w2 * g2 - d**2 / (d**2 + 1) * w2 * g3
+
+GENHIPPREP = Printed(
+    "eq:genhipprep",
+    r"a_0=(d^2+1)p^2\omega_1,\ a_1=dp(2(d^2+1)\omega_1^2-\omega_2^2),\ a_2=(d^2+1)\omega_1[(d^2+p^2)\omega_1^2"
+    r"+p^2\omega_2^2],\ a_3=-dp\omega_2^2[(d^2+1)\omega_1^2+\omega_2^2]",
+    "section 5.1 (a'ss)",
+)
+GAMMA_1 = Printed(
+    "eq:gamma_1",
+    r"b_1=\frac2z+\frac1{z-1},\ b_2=\frac{-p^2(z-1)+d^2(1+z(-6-p^2(z-1)+4z))}{4d^2(z-1)^2z^2},\ "
+    r"b_3=\frac{(d^2+1)p^2}{8d^2(z-1)^2z^2}",
+    "section 5.1",
+)
+GENHIP = Printed(
+    "eq:genhip",
+    r"z^2(1-z)u'''+\tfrac12(4-9z)zu''+[\tfrac14(1+\tfrac{p^2}{d^2})+\tfrac14(p^2-13)z]u'+\tfrac18(p^2-1)u=0",
+    "section 5.1",
+)
+PARAM = Printed(
+    "eq:param",
+    r"\alpha_1=\tfrac12,\ \alpha_2=\tfrac{1+p}2,\ \alpha_3=\tfrac{1-p}2,\ \beta_{1,2}=\frac{d\mp ip}{2d}",
+    "section 5.1",
+)
+POCHHAMMER = Printed("eq:ghyp", r"(a)_k=a(a+1)\cdots(a+k),\ (a)_0=1", "section 5.1, after eq:ghyp")
+
+GAM1 = Printed(
+    "gam1",
+    r"\gamma_1^{(1)}=\frac{e^t-e^{-t}}{(e^t+e^{-t})^p}\sum_k a_k(e^t+e^{-t})^{p-1-2k},\ a_k=4^k\frac{(2k-1)!!}{(2k)!!}"
+    r"\frac{d^{2k}(p^2-1)\cdots(p^2-(2k-1)^2)}{(d^2+p^2)\cdots((2k-1)d^2+p^2)}",
+    "Theorem 6.1",
+)
+GAM2 = Printed(
+    "gam2",
+    r"\gamma_1^{(2)}=\frac{e^{(1-\frac{ip}{d})t}}{(1+e^{2t})^p}\sum_k b_ke^{2kt},\ b_k\text{ from }a=\tfrac{2-p}2"
+    r"+\tfrac{ip}{2d},\ c=\tfrac32+\tfrac{ip}{2d}",
+    "Theorem 6.1",
+)

@@ -40,7 +40,7 @@ VOLATILE = ("certificate_costs.json", "certificate_costs.tex")
 # (template, output file, derivations the output needs)
 OUTPUTS = (
     ("init.py.j2", "__init__.py", ()),
-    ("suslov_formulas.py.j2", "suslov_formulas.py", ("model", "special_case", "first_integrals")),
+    ("suslov_formulas.py.j2", "suslov_formulas.py", ("model", "special_case", "first_integrals", "meromorphic")),
     ("suslov_formulas.tex.j2", "suslov_formulas.tex", ()),
     ("formulas_body.tex.j2", "formulas_body.tex", ()),
     ("certificates_table.tex.j2", "certificates_table.tex", ()),
@@ -136,6 +136,8 @@ def context(build: Build) -> dict:
         "code": _code(build),
         "integral_ps": [r["p"] for r in build.results["first_integrals"].exports["rows"]]
         if "first_integrals" in build.results else [],
+        "basis_ps": [r["p"] for r in build.results["meromorphic"].exports["rows"]]
+        if "meromorphic" in build.results else [],
         "integral_rows": build.results["first_integrals"].exports["rows"] if "first_integrals" in build.results else [],
         "counts": {o.value: sum(1 for c in build.log.certificates if c.outcome is o) for o in Outcome},
         "refuted": sum(1 for c in build.log.certificates if c.expected is Outcome.FAIL),

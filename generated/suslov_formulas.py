@@ -27,7 +27,8 @@ import mpmath
 import numpy as np
 
 __all__ = ["omega", "omega_mp", "omega_general", "omega_general_mp", "first_integral", "first_integral_mp",
-           "first_integral_coefficients", "load_certificates", "PMAX", "INTEGRAL_PS"]
+           "first_integral_coefficients", "gamma_basis", "gamma_basis_mp", "load_certificates", "PMAX",
+           "INTEGRAL_PS", "BASIS_PS"]
 
 PMAX = 15
 # odd p whose polynomial first integral was certified by this build
@@ -326,6 +327,254 @@ def first_integral_mp(p, d, omega1, omega2, gamma1, gamma2, gamma3, dps=50):
         for P, g in zip(_integral_coefficients(p, d, mpmath.mpf(1))[:3], (g1, g2, g3)):
             total += g * mpmath.fsum(a * w1 ** (p - k) * w2**k for k, a in enumerate(P))
         return +total
+
+
+# odd p whose orthonormal basis of Poisson solutions was certified by this build
+BASIS_PS = (1, 3, 5, 7, 9, 11, 13, 15)
+
+
+def _basis_p(p):
+    if isinstance(p, bool) or not isinstance(p, (int, np.integer)) or int(p) < 1 or int(p) % 2 == 0:
+        raise ValueError(f"p={p!r}: must be an odd positive integer (closed-form meromorphic solutions exist "
+                         "for odd p only)")
+    p = int(p)
+    if p not in BASIS_PS:
+        raise ValueError(f"p={p}: outside the certified range of this build (odd p <= {max(BASIS_PS)}); "
+                         "rebuild with build_formulas.py --pmax N")
+    return p
+
+
+def _pmul(a, b):
+    out = [0 * a[0]] * (len(a) + len(b) - 1)
+    for i, u in enumerate(a):
+        for j, v in enumerate(b):
+            out[i + j] += u * v
+    return out
+
+
+def _padd(a, b):
+    n = max(len(a), len(b))
+    zero = 0 * (a[0] if a else b[0])
+    return [(a[i] if i < len(a) else zero) + (b[i] if i < len(b) else zero) for i in range(n)]
+
+
+def _pdiv(a, b):
+    """Quotient of exact division a / b (coefficients low to high)."""
+    a = list(a)
+    q = [0 * a[0]] * (len(a) - len(b) + 1)
+    for i in range(len(q) - 1, -1, -1):
+        q[i] = a[i + len(b) - 1] / b[-1]
+        for j, v in enumerate(b):
+            a[i + j] -= q[i] * v
+    return q
+
+
+def _DD(N, p, d, rate):
+    """d * numerator of D(e^{i rate (p/d) t} N/(1+x^2)^p) over (1+x^2)^(p+1), D = x d/dx."""
+    dN = [k * N[k] for k in range(1, len(N))] or [0 * N[0]]
+    xdN = [0 * N[0]] + dN
+    one_x2 = [1, 0, 1]
+    out = _padd(_pmul(xdN, one_x2), [0 * N[0]] * 2 + [-2 * p * v for v in N])
+    out = [d * v for v in out]
+    if rate:
+        out = _padd(out, [1j * rate * p * v for v in _pmul(N, one_x2)])
+    return out
+
+
+def _complete(N1, p, d, rate):
+    """(2p^2 N1, M2, p M3): c-free components from the first (the certified eq:gam3 recipe)."""
+    M3 = _DD(N1, p, d, rate)[1:]  # exact division by x
+    top = _padd([-4 * p * p * (d * d + 1) * v for v in [0 * N1[0]] + N1], [-v for v in _DD(M3, p, d, rate)])
+    M2 = _pdiv(top, [-1, 0, 1])  # exact division by x^2 - 1 (no removable singularity at t = 0)
+    return [[2 * p * p * v for v in N1], M2, [p * v for v in M3]]
+
+
+def _basis_numerators(p, d, one):
+    """Numerators over (1+x^2)^p, x = e^t, of gamma^(1) (real) and of V (complex), mpmath numbers.
+
+    gamma^(1) = (M1, M2/c, M3/c) / (scale (1+x^2)^p);  Gamma = (c V1, V2, V3) / (k (1+x^2)^p) e^{i (p/d) t},
+    k = V2(x=0).  The recipe is derivations/meromorphic.py (certified there for every odd p <= PMAX).
+    """
+    J = (p - 1) // 2
+    dd = d * d
+    cj = [one]
+    for j in range(J):
+        cj.append(cj[-1] * (2 * j + 1) * ((2 * j + 1) ** 2 - p * p) * dd / ((2 * j + 2) * ((2 * j + 1) ** 2 * dd + p * p)))
+    N = [0 * one]
+    for j in range(J + 1):
+        power = [one]
+        for _ in range(p - 1 - 2 * j):
+            power = _pmul(power, [one, 0 * one, one])
+        N = _padd(N, [0 * one] * (2 * j) + [cj[j] * 4**j * v for v in power])
+    N1 = _pmul([-one, 0 * one, one], N)
+    real = _complete(N1, p, d, 0)
+    a = (2 - p) / (2 * one) + 1j * p / (2 * d)
+    b = (1 - p) / (2 * one)
+    c = 3 / (2 * one) + 1j * p / (2 * d)
+    f = [mpmath.mpc(1)]
+    for k in range(J):
+        f.append(f[-1] * (a + k) * (b + k) / ((c + k) * (k + 1)))
+    F = [f[k] * (-1) ** k for k in range(J + 1)]
+    dF = [k * F[k] for k in range(1, len(F))] or [0 * F[0]]
+    Fhat = _padd(_pmul([-d - 1j * p, d * (p - 1)], F), [-2 * d * v for v in _pmul([0, 1, 1], dF)])
+    P = _pmul(F, Fhat)
+    V1 = [0 * P[0]] * (2 * len(P))
+    for k, v in enumerate(P):
+        V1[2 * k + 1] = v
+    return real, 2 * p * p, _complete(V1, p, d, 1)
+
+
+_FOURIER_CACHE = {}
+
+
+def _fourier_matrices(p):
+    """Integer matrices: x^m/(1+x^2)^p = cos^m(th/2) sin^(2p-m)(th/2) = (sum_k C[m,k] cos k th + S[m,k] sin k th)/4^p."""
+    if p not in _FOURIER_CACHE:
+        from math import comb
+        C = [[0] * (p + 1) for _ in range(2 * p + 1)]
+        S = [[0] * (p + 1) for _ in range(2 * p + 1)]
+        for m in range(2 * p + 1):
+            n = 2 * p - m
+            # F_k = (-i)^n sum_{a+b=p-k} C(m,a) C(n,b) (-1)^b / 4^p, k = -p..p
+            for k in range(0, p + 1):
+                total = sum(comb(m, a) * comb(n, p - k - a) * (-1) ** (p - k - a)
+                            for a in range(max(0, p - k - n), min(m, p - k) + 1))
+                unit = (-1) ** (n // 2) if n % 2 == 0 else (-1) ** ((n + 1) // 2)  # (-i)^n = unit or unit*i
+                weight = 1 if k == 0 else 2
+                if n % 2 == 0:      # F_k real: contributes weight * F_k cos k th
+                    C[m][k] = weight * unit * total
+                else:               # F_k = i unit total: weight*Re(F_k e^{ik th}) = -weight * unit * total sin k th
+                    S[m][k] = -weight * unit * total
+        _FOURIER_CACHE[p] = (C, S)
+    return _FOURIER_CACHE[p]
+
+
+def _to_fourier(numerator, p):
+    """(cos coefficients, sin coefficients) of numerator(x)/(1+x^2)^p as a trigonometric polynomial in th."""
+    C, S = _fourier_matrices(p)
+    scale = mpmath.mpf(4) ** p
+    numerator = list(numerator) + [0] * (2 * p + 1 - len(numerator))
+    alpha = [mpmath.fsum(numerator[m] * C[m][k] for m in range(2 * p + 1)) / scale for k in range(p + 1)]
+    beta = [mpmath.fsum(numerator[m] * S[m][k] for m in range(2 * p + 1)) / scale for k in range(p + 1)]
+    return alpha, beta
+
+
+def _basis_series(p, d, dps):
+    """Trigonometric-polynomial coefficients of the basis, shape (rows, components, re/im, cos/sin, k)."""
+    with mpmath.workdps(dps):
+        dm = mpmath.mpf(d)
+        c = mpmath.sqrt(dm * dm + 1)
+        real, _, V = _basis_numerators(p, dm, mpmath.mpf(1))
+        # gamma^(1): scale factor from the certified limit gamma1 -> -1 at x = 0
+        s = -real[0][0]
+        rows = []
+        rows.append([[_to_fourier([v / s for v in real[0]], p)],
+                     [_to_fourier([v / (c * s) for v in real[1]], p)],
+                     [_to_fourier([v / (c * s) for v in real[2]], p)]])
+        k = V[1][0]
+        G = [[c * v / k for v in V[0]], [v / k for v in V[1]], [v / k for v in V[2]]]
+        rows.append([[_to_fourier([mpmath.re(v) for v in comp], p), _to_fourier([mpmath.im(v) for v in comp], p)]
+                     for comp in G])
+        return rows
+
+
+_SERIES_CACHE = {}
+
+
+def _series_float(p, d):
+    """float64 coefficients, computed at two precisions and compared (guards against cancellation)."""
+    key = (p, float(d))
+    if key not in _SERIES_CACHE:
+        dps = 40 + 3 * p
+        while True:
+            first = _basis_series(p, d, dps)
+            second = _basis_series(p, d, dps + 40)
+            flat = lambda rows: np.array([float(v) for row in rows for comp in row for part in comp
+                                          for half in part for v in half])
+            if np.max(np.abs(flat(first) - flat(second))) <= 1e-17:
+                break
+            dps *= 2
+        _SERIES_CACHE[key] = second
+    return _SERIES_CACHE[key]
+
+
+def _theta(t):
+    """th = 2 arctan(e^-t) in (0, pi): tanh t = cos th, sech t = sin th (no overflow)."""
+    with np.errstate(over="ignore", under="ignore"):
+        return np.where(t >= 0, 2.0 * np.arctan(np.exp(-np.abs(t))), np.pi - 2.0 * np.arctan(np.exp(-np.abs(t))))
+
+
+def gamma_basis(t, p, d):
+    """Real orthonormal basis of solutions of the Poisson equations for odd p (Theorem 6.1, corrected).
+
+    Returns an array of shape ``t.shape + (3, 3)`` whose rows are gamma^(1),
+    gamma^(2), gamma^(3) at time t, for omega(t) = ((p/d) tanh t, -(p/d) sqrt(d^2+1) sech t)
+    (see :func:`omega`).  Conventions (certified by the build):
+
+    * gamma^(1)(t) -> (-1, 0, 0) as t -> -oo and (+1, 0, 0) as t -> +oo (the boundary
+      condition ``ss``; no sign ambiguity), gamma^(1)_1 = tanh t F1(sech^2 t);
+    * gamma^(2) + i gamma^(3) = e^{i (p/d) t} V(t) with V -> (0, 1, -i) as t -> -oo;
+    * the rows are orthonormal and the matrix has determinant +1 (a rotation).
+
+    Any solution of the Poisson equations is ``C @ gamma_basis(t, p, d)`` for a constant
+    row vector ``C``.  Evaluated as trigonometric polynomials in th = 2 arctan(e^-t)
+    (cos th = tanh t, sin th = sech t) whose coefficients are bounded by 2: no
+    cancellation for large p, no overflow for any t, no removable singularity at t = 0.
+    Coefficients are computed once per (p, d) with mpmath and cached.  Absolute
+    accuracy about 1e-14 for p <= 15; the phase (p/d) t carries the relative rounding
+    of t itself (|t| p/d * 1e-16).
+
+    Raises ValueError for even or non-integer p, p outside the certified range,
+    d <= 0 or non-finite, non-finite t.
+    """
+    p = _basis_p(p)
+    d = float(_real_scalar("d", d, positive=True))
+    t = _times(t)
+    rows = _series_float(p, d)
+    th = _theta(t)[..., None]
+    k = np.arange(p + 1)
+    cos_k, sin_k = np.cos(th * k), np.sin(th * k)
+
+    def series(part):
+        alpha, beta = part
+        return cos_k @ np.array([float(v) for v in alpha]) + sin_k @ np.array([float(v) for v in beta])
+
+    out = np.empty(t.shape + (3, 3))
+    for j in range(3):
+        out[..., 0, j] = series(rows[0][j][0])
+    phase = (p / d) * t
+    cphi, sphi = np.cos(phase), np.sin(phase)
+    for j in range(3):
+        re, im = series(rows[1][j][0]), series(rows[1][j][1])
+        out[..., 1, j] = cphi * re - sphi * im
+        out[..., 2, j] = sphi * re + cphi * im
+    return out
+
+
+def gamma_basis_mp(t, p, d, dps=50):
+    """mpmath twin of :func:`gamma_basis` for scalar t: a 3x3 ``mpmath.matrix`` (rows gamma^(i))."""
+    p = _basis_p(p)
+    with mpmath.workdps(dps):
+        t = _real_scalar("t", mpmath.mpf(t))
+        d = _real_scalar("d", mpmath.mpf(d), positive=True)
+    rows = _basis_series(p, d, max(dps, 40) + 3 * p + 40)
+    with mpmath.workdps(dps + 10):
+        th = 2 * mpmath.atan(mpmath.exp(-t))
+
+        def series(part):
+            alpha, beta = part
+            return mpmath.fsum(alpha[k] * mpmath.cos(k * th) + beta[k] * mpmath.sin(k * th) for k in range(p + 1))
+
+        out = mpmath.matrix(3, 3)
+        phase = p * t / d
+        cphi, sphi = mpmath.cos(phase), mpmath.sin(phase)
+        for j in range(3):
+            out[0, j] = series(rows[0][j][0])
+            re, im = series(rows[1][j][0]), series(rows[1][j][1])
+            out[1, j] = cphi * re - sphi * im
+            out[2, j] = sphi * re + cphi * im
+    with mpmath.workdps(dps):
+        return +out
 
 
 def load_certificates():
