@@ -195,3 +195,54 @@ GAM2 = Printed(
     r"+\tfrac{ip}{2d},\ c=\tfrac32+\tfrac{ip}{2d}",
     "Theorem 6.1",
 )
+
+EXAMPLE_P1 = Printed(
+    "example p = 1",
+    r"\gamma^{(1)}=(\tanh t,-\tfrac{\operatorname{sech}t}{c},\tfrac{d\operatorname{sech}t}{c}),\ "
+    r"\gamma^{(2)}=(\cos\tfrac td\operatorname{sech}t,\tfrac{\cos\frac td\tanh t-d\sin\frac td}{c},"
+    r"-\tfrac{d\cos\frac td\tanh t+\sin\frac td}{c}),\ \gamma^{(3)}=\dots",
+    "section 6.2",
+)
+EXAMPLE_P3 = Printed(
+    "example p = 3",
+    r"\gamma^{(1)}=\alpha\big(c(9+d^2-4d^2\operatorname{sech}^2t)\tanh t,\dots\big),\ \alpha=\frac1{c(d^2+9)},\ "
+    r"\gamma^{(2)},\gamma^{(3)}\text{ in }e^t,\cosh,\cos\tfrac{3t}d,\sin\tfrac{3t}d",
+    "section 6.2",
+)
+
+
+def printed_example(p: int, t, d):
+    """The printed real solutions for p = 1 and p = 3 (rows gamma^(1..3)), evaluated with mpmath."""
+    import mpmath as mp
+
+    c = mp.sqrt(d * d + 1)
+    S, T = mp.sech(t), mp.tanh(t)
+    if p == 1:
+        C, Sn = mp.cos(t / d), mp.sin(t / d)
+        return [[T, -S / c, d * S / c],
+                [C * S, (C * T - d * Sn) / c, -(d * C * T + Sn) / c],
+                [Sn * S, (Sn * T + d * C) / c, -(d * Sn * T - C) / c]]
+    if p == 3:
+        a = 1 / (c * (d * d + 9))
+        E, E2, E4 = mp.exp(t), mp.exp(2 * t), mp.exp(4 * t)
+        C, Sn = mp.cos(3 * t / d), mp.sin(3 * t / d)
+        ch, sh, ch2 = mp.cosh(t), mp.sinh(t), mp.cosh(2 * t)
+        pre = a / (E2 + 1) ** 3
+        dd = d * d
+        return [
+            [a * c * (9 + dd - 4 * dd * S**2) * T, a * (4 * dd * S**2 - 9 * (dd + 1)) * S,
+             a * d * (3 * (dd + 1) - 4 * dd * S**2) * S],
+            [pre * (-2 * c * E * ((dd * (3 - 10 * E2 + 3 * E4) - 9 * (1 + E2) ** 2) * C + 12 * d * (E4 - 1) * Sn)),
+             pre * 4 * E**3 * (d * ((dd - 15) * ch2 + 9 + dd) * ch * Sn + ((9 - 7 * dd) * ch2 + 9 + dd) * sh * C),
+             pre * 4 * E**3 * (((7 * dd - 9) * ch2 - 9 - 17 * dd) * ch * Sn + d * ((dd - 15) * ch2 - 15 - 7 * dd) * sh * C)],
+            [pre * (2 * c * E * ((dd * (3 - 10 * E2 + 3 * E4) - 9 * (E2 + 1) ** 2) * Sn + 12 * d * (1 - E4) * C)),
+             pre * 4 * E**3 * (d * ((dd - 15) * ch2 + 9 + dd) * ch * C + ((7 * dd - 9) * ch2 - 9 - dd) * sh * Sn),
+             -pre * 4 * E**3 * (((9 - 7 * dd) * ch2 + 9 + 17 * dd) * ch * C + d * ((dd - 15) * ch2 - 15 - 7 * dd) * sh * Sn)],
+        ]
+    raise ValueError(f"p={p}: the paper prints examples for p = 1 and p = 3 only")
+
+POLY_F2 = Printed(
+    "poly_F2",
+    r"\hat F=\sum_{k}\frac{(a_\pm)_k(b_\pm)_k}{(c_\pm)_kk!}\frac{(2dk+d+pi)(4dk-dp\pm ip)}{dp-2dk\mp ip}(-y)^k",
+    "section 5.1",
+)

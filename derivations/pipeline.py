@@ -47,6 +47,7 @@ OUTPUTS = (
     ("errata_table.tex.j2", "errata_table.tex", ()),
     ("per_p_table.tex.j2", "per_p_table.tex", ("special_case",)),
     ("integrals_table.tex.j2", "integrals_table.tex", ("first_integrals",)),
+    ("basis_tables.tex.j2", "basis_tables.tex", ("meromorphic",)),
     ("certificate_costs.tex.j2", "certificate_costs.tex", ()),
 )
 
@@ -138,6 +139,8 @@ def context(build: Build) -> dict:
         if "first_integrals" in build.results else [],
         "basis_ps": [r["p"] for r in build.results["meromorphic"].exports["rows"]]
         if "meromorphic" in build.results else [],
+        "basis_rows": build.results["meromorphic"].exports["rows"] if "meromorphic" in build.results else [],
+        "basis_tables": build.results["meromorphic"].exports["tables"] if "meromorphic" in build.results else {},
         "integral_rows": build.results["first_integrals"].exports["rows"] if "first_integrals" in build.results else [],
         "counts": {o.value: sum(1 for c in build.log.certificates if c.outcome is o) for o in Outcome},
         "refuted": sum(1 for c in build.log.certificates if c.expected is Outcome.FAIL),
