@@ -246,3 +246,39 @@ POLY_F2 = Printed(
     r"\hat F=\sum_{k}\frac{(a_\pm)_k(b_\pm)_k}{(c_\pm)_kk!}\frac{(2dk+d+pi)(4dk-dp\pm ip)}{dp-2dk\mp ip}(-y)^k",
     "section 5.1",
 )
+
+EQ_D = Printed(
+    "eq:d",
+    r"\bar\omega_1=\frac1{I_{11}I_{23}+iI_{13}\sqrt{I_{11}I_{22}}},\ \bar\omega_2=-\frac1{I_{13}I_{22}-iI_{23}"
+    r"\sqrt{I_{11}I_{22}}},\ \bar\gamma=0",
+    "section 3.1",
+)
+NECCG1 = Printed("eq:neccg1", r"I_{13}I_{23}(I_{11}-I_{22})=0", "section 3.1")
+NECCG12 = Printed(
+    "eq:neccg12",
+    r"\frac{(I_{11}-I_{22})(I_{11}I_{23}^2-I_{22}I_{13}^2)}{I_{11}I_{22}(I_{11}I_{22}I_{33}-1)^2}=p^2",
+    "section 3.1",
+)
+NECC11 = Printed(
+    "eq:necc11",
+    r"I_{23}=0,\ \frac{I_{11}-I_{22}}{I_{11}I_{22}(I_{11}I_{22}I_{33}-1)}=-p^2",
+    "Theorem 3.1",
+)
+LINA = Printed(
+    "eq:lina",
+    r"\omega_1\to-\omega_2,\ \omega_2\to-\omega_1,\ \gamma_1\leftrightarrow\gamma_2,\ I_{11}\leftrightarrow I_{22},"
+    r"\ I_{13}\leftrightarrow I_{23}",
+    "section 3",
+)
+
+AM1 = Printed(
+    "eq:am1",
+    r"A_0=\begin{bmatrix}0&0&-b+\frac i2c_2\\0&0&a+\frac i2c_1\\b-\frac i2c_2&-a+\frac i2c_1&0\end{bmatrix}",
+    "section 3.2",
+)
+THEOREM31 = Printed(
+    "Theorem 3.1",
+    r"\text{all solutions meromorphic iff }I_{13}=0,\ \tfrac{I_{11}-I_{22}}{I_{11}I_{22}(I_{11}I_{22}I_{33}-1)}=p^2"
+    r"\text{ or }I_{23}=0,\ \dots=-p^2,\ p\in\mathbb Z^*",
+    "Theorem 3.1, Theorem 3.5",
+)

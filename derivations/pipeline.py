@@ -40,7 +40,7 @@ VOLATILE = ("certificate_costs.json", "certificate_costs.tex")
 # (template, output file, derivations the output needs)
 OUTPUTS = (
     ("init.py.j2", "__init__.py", ()),
-    ("suslov_formulas.py.j2", "suslov_formulas.py", ("model", "special_case", "first_integrals", "meromorphic")),
+    ("suslov_formulas.py.j2", "suslov_formulas.py", ("model", "special_case", "first_integrals", "meromorphic", "kovalevskaya")),
     ("suslov_formulas.tex.j2", "suslov_formulas.tex", ()),
     ("formulas_body.tex.j2", "formulas_body.tex", ()),
     ("certificates_table.tex.j2", "certificates_table.tex", ()),
@@ -48,6 +48,7 @@ OUTPUTS = (
     ("per_p_table.tex.j2", "per_p_table.tex", ("special_case",)),
     ("integrals_table.tex.j2", "integrals_table.tex", ("first_integrals",)),
     ("basis_tables.tex.j2", "basis_tables.tex", ("meromorphic",)),
+    ("monodromy_tables.tex.j2", "monodromy_tables.tex", ("residue",)),
     ("certificate_costs.tex.j2", "certificate_costs.tex", ()),
 )
 
@@ -111,6 +112,9 @@ def _code(build: Build) -> dict:
     if "special_case" in build.results:
         sol = build.results["special_case"].exports["solution"]
         code["omega"] = [python_source(sol[w1]), python_source(sol[w2])]
+    if "kovalevskaya" in build.results:
+        exports = build.results["kovalevskaya"].exports
+        code["lambda2"] = [python_source(exports["lambda_real"]), python_source(exports["lambda_imag"])]
     if "model" in build.results:
         sol = build.results["model"].exports["solution"]
         code["omega_general"] = [python_source(sol[w1]), python_source(sol[w2])]
@@ -139,6 +143,8 @@ def context(build: Build) -> dict:
         if "first_integrals" in build.results else [],
         "basis_ps": [r["p"] for r in build.results["meromorphic"].exports["rows"]]
         if "meromorphic" in build.results else [],
+        "log_rows": build.results["residue"].exports["log_rows"] if "residue" in build.results else [],
+        "body_rows": build.results["residue"].exports["body_rows"] if "residue" in build.results else [],
         "basis_rows": build.results["meromorphic"].exports["rows"] if "meromorphic" in build.results else [],
         "basis_tables": build.results["meromorphic"].exports["tables"] if "meromorphic" in build.results else {},
         "integral_rows": build.results["first_integrals"].exports["rows"] if "first_integrals" in build.results else [],

@@ -8,9 +8,10 @@ from __future__ import annotations
 
 from types import ModuleType
 
-from . import first_integrals, hypergeometric, meromorphic, model, special_case
+from . import first_integrals, hypergeometric, kovalevskaya, meromorphic, model, residue, special_case
 
-DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, hypergeometric, meromorphic, first_integrals)}
+DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, kovalevskaya, residue, hypergeometric,
+                                                   meromorphic, first_integrals)}
 
 
 def requirements(name: str) -> tuple[str, ...]:

@@ -39,7 +39,9 @@ class _ArithmeticPrinter(PythonCodePrinter):
     def _print_Pow(self, expr, rational=False):
         base, exp = expr.as_base_exp()
         if exp.is_Integer and exp > 0:
-            return "*".join([self.parenthesize(base, sp.printing.precedence.PRECEDENCE["Mul"])] * int(exp))
+            # parenthesised: the product may stand in a denominator (x/(y*y), not x/y*y)
+            factors = [self.parenthesize(base, sp.printing.precedence.PRECEDENCE["Mul"])] * int(exp)
+            return factors[0] if exp == 1 else "(" + "*".join(factors) + ")"
         return super()._print_Pow(expr, rational)
 
 

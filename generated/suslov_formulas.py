@@ -28,7 +28,7 @@ import numpy as np
 
 __all__ = ["omega", "omega_mp", "omega_general", "omega_general_mp", "first_integral", "first_integral_mp",
            "first_integral_coefficients", "gamma_basis", "gamma_basis_mp", "load_certificates", "PMAX",
-           "INTEGRAL_PS", "BASIS_PS"]
+           "INTEGRAL_PS", "BASIS_PS", "kovalevskaya_exponents", "meromorphy", "Meromorphy"]
 
 PMAX = 15
 # odd p whose polynomial first integral was certified by this build
@@ -141,7 +141,7 @@ def omega_mp(t, p, d, dps=50):
 def _omega_general(ctx, t, I11, I22, I13, I23, r):
     T = ctx.tanh(t)
     S = ctx.sech(t)
-    return (I22*(-I11*I23*T + I13*S*r)/(I11*I23*I23 + I13*I13*I22), I11*(I13*I22*T + I23*S*r)/(I11*I23*I23 + I13*I13*I22))
+    return (I22*(-I11*I23*T + I13*S*r)/(I11*(I23*I23) + (I13*I13)*I22), I11*(I13*I22*T + I23*S*r)/(I11*(I23*I23) + (I13*I13)*I22))
 
 
 def _tensor(I11, I22, I13, I23):
@@ -575,6 +575,103 @@ def gamma_basis_mp(t, p, d, dps=50):
             out[2, j] = sphi * re + cphi * im
     with mpmath.workdps(dps):
         return +out
+
+
+def _canonical_tensor(I):
+    """Validate a numeric inertia tensor (constraint axis a = e3) and bring it to the paper's frame.
+
+    Returns (I11, I22, I13, I23) of det I = 1 in the frame rotated about e3 so that I12 = 0
+    and I11 >= I22.  Raises ValueError naming what is wrong.
+    """
+    try:
+        M = np.array(I, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"I={I!r}: must be a 3x3 array of real numbers") from None
+    if M.shape != (3, 3):
+        raise ValueError(f"I has shape {M.shape}: must be 3x3")
+    if not np.all(np.isfinite(M)):
+        raise ValueError("I contains NaN or inf")
+    scale = np.max(np.abs(M))
+    if np.max(np.abs(M - M.T)) > 1e-12 * scale:
+        raise ValueError(f"I is not symmetric (max |I - I^T| = {np.max(np.abs(M - M.T)):.3g})")
+    M = (M + M.T) / 2
+    eig = np.linalg.eigvalsh(M)
+    if eig[0] <= 0:
+        raise ValueError(f"I is not positive definite (smallest eigenvalue {eig[0]:.6g})")
+    M = M / np.linalg.det(M) ** (1.0 / 3.0)
+    theta = 0.5 * math.atan2(2 * M[0, 1], M[0, 0] - M[1, 1])
+    R = np.array([[math.cos(theta), -math.sin(theta), 0.0], [math.sin(theta), math.cos(theta), 0.0], [0.0, 0.0, 1.0]])
+    M = R.T @ M @ R
+    I11, I22, I13, I23 = M[0, 0], M[1, 1], M[0, 2], M[1, 2]
+    if math.hypot(I13, I23) <= 1e-12 * np.max(np.abs(M)):
+        raise ValueError("a = (0, 0, 1) is an eigenvector of I (I13 = I23 = 0): every motion is an equilibrium")
+    return I11, I22, I13, I23
+
+
+def _lambda_squared(I11, I22, I13, I23):
+    """Lambda^2 at the Darboux point with m3 = i r, r = sqrt(I11 I22) (derived; see the certificates)."""
+    r = math.sqrt(I11 * I22)
+    return complex(I11*I22*(I11 - I22)*(I11*(I23*I23) - (I13*I13)*I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), -2*I11*I13*I22*I23*r*(I11 - I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)))
+
+
+def kovalevskaya_exponents(I):
+    """The five Kovalevskaya exponents -1, 1, 2, 1 + Lambda, 1 - Lambda (paper section 3.1, derived).
+
+    ``I`` is a symmetric positive-definite 3x3 inertia tensor in any body frame whose third
+    axis is the constraint vector a = (0, 0, 1); the function normalises det I = 1 and
+    rotates about a to make I12 = 0 (the exponents do not depend on either).  Computed
+    for the equations derived from d/dt(I w) = I w x w + lambda a (not the printed gen12)
+    at the Darboux point with m3 = I13 w1 + I23 w2 = i sqrt(I11 I22); the conjugate point
+    gives the conjugate exponents.  Returns a complex NumPy array of length 5.
+    """
+    lam2 = _lambda_squared(*_canonical_tensor(I))
+    lam = np.sqrt(lam2 + 0j)
+    return np.array([-1, 1, 2, 1 + lam, 1 - lam], dtype=complex)
+
+
+class Meromorphy(tuple):
+    """(case, p_squared, p, odd) with field names; see :func:`meromorphy`."""
+
+    _fields = ("case", "p_squared", "p", "odd")
+
+    def __new__(cls, case, p_squared, p, odd):
+        return super().__new__(cls, (case, p_squared, p, odd))
+
+    case = property(lambda self: self[0])
+    p_squared = property(lambda self: self[1])
+    p = property(lambda self: self[2])
+    odd = property(lambda self: self[3])
+
+    def __repr__(self):
+        return f"Meromorphy(case={self.case!r}, p_squared={self.p_squared!r}, p={self.p!r}, odd={self.odd!r})"
+
+
+def meromorphy(I, tol=1e-9):
+    """Which case of Theorem 3.1 (corrected) holds for a numeric inertia tensor.
+
+    In the frame of :func:`kovalevskaya_exponents` (I12 = 0, I11 >= I22): ``case`` is
+    ``"I13=0"``, ``"I23=0"`` or ``"neither"`` (relative tolerance ``tol``); ``p_squared``
+    is Lambda^2 (complex in the case "neither"); ``p`` = sqrt(p_squared) when it is real
+    and >= 0, else None; ``odd`` is True when p is within ``tol`` of an odd integer.
+
+    Derived (and certified, with exact Frobenius recursions) for the equations of motion
+    from d/dt(I w) = I w x w + lambda a: all solutions of the Poisson equations are
+    meromorphic iff I13 = 0 and p = sqrt(I22 (I11 - I22))/|I23| is an *odd* integer
+    (I23 = 0 gives p^2 <= 0 in this frame).  The paper's eq:necc1 differs by the
+    factor (I11 I22)^2 and admits even p, for which logarithms appear.
+    """
+    I11, I22, I13, I23 = _canonical_tensor(I)
+    size = max(abs(I11), abs(I22), abs(I13), abs(I23))
+    lam2 = _lambda_squared(I11, I22, I13, I23)
+    if abs(I13) <= tol * size:
+        case, p2 = "I13=0", I22 * (I11 - I22) / I23**2
+    elif abs(I23) <= tol * size:
+        case, p2 = "I23=0", -I11 * (I11 - I22) / I13**2
+    else:
+        case, p2 = "neither", lam2
+    p = math.sqrt(p2) if isinstance(p2, float) and p2 >= 0 else None
+    odd = p is not None and abs(p - round(p)) <= tol * max(1.0, p) and round(p) % 2 == 1
+    return Meromorphy(case, p2, p, odd)
 
 
 def load_certificates():
