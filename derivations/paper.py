@@ -282,3 +282,6 @@ THEOREM31 = Printed(
     r"\text{ or }I_{23}=0,\ \dots=-p^2,\ p\in\mathbb Z^*",
     "Theorem 3.1, Theorem 3.5",
 )
+
+NECCG2 = Printed("eq:neccg2", r"ac_1+bc_2=0,\ c_1^2+c_2^2-4(a^2+b^2)=4p^2", "section 3.1, Remark")
+NECC2 = Printed("eq:necc2", r"c_1=b=0,\ c_2^2-4a^2=4p^2", "Theorem 3.1")

@@ -249,6 +249,20 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
     c_link = certify_zero(log, "for the derived solution, rho2^2 (eq:ro, t0 = i pi/2) equals the Kovalevskaya "
                           "Lambda^2 of the Darboux point with the opposite branch of r", "eq:ro",
                           rho2_derived - Lam2.subs(r, -r), I_DOMAIN)
+    Dm = I11 * I23**2 + I22 * I13**2
+    aa, bb, cc1, cc2 = (derived[v] for v in (a_, b_, c1_, c2_))
+    c_g2 = certify_zero(log, "derived coefficients: a c1 + b c2 = 2 r I11 I22 I13 I23 (I11 - I22)/D^2 and "
+                        "c1^2 + c2^2 - 4(a^2 + b^2) = 4 Re Lambda^2", "eq:neccg2",
+                        [aa * cc1 + bb * cc2 - 2 * r * I11 * I22 * I13 * I23 * (I11 - I22) / Dm**2,
+                         cc1**2 + cc2**2 - 4 * (aa**2 + bb**2) - 4 * kova_result.exports["lambda_real"]], I_DOMAIN)
+    c_n2 = certify_zero(log, "I13 = 0: c1 = b = 0 and c2^2 - 4 a^2 = 4 p^2 with p^2 = I22 (I11 - I22)/I23^2",
+                        "eq:necc2", [cc1.subs(I13, 0), bb.subs(I13, 0),
+                                     (cc2**2 - 4 * aa**2).subs(I13, 0) - 4 * I22 * (I11 - I22) / I23**2], I_DOMAIN)
+    result.errata.append(erratum(paper.NECCG2, "confirmed", paper.NECCG2.latex,
+                                 "as a statement about the coefficients of the normalised solution (which are "
+                                 "-I11 I22 times the printed c's)", c_g2, c_link))
+    result.errata.append(erratum(paper.NECC2, "confirmed", paper.NECC2.latex,
+                                 "with the derived coefficients; equivalent to the corrected eq:necc1", c_n2))
     result.formula("am1", "eq:am1, eq:ro", "Residue of $A(t)$ at $t_0=i\\pi/2$ and its eigenvalues",
                    r"A_0=" + sp.latex(fixed) + r",\quad \rho\in\{0,\pm\rho_2\},\ \rho_2^2=\tfrac14\big(c_1^2+c_2^2-4(a^2+b^2)"
                    r"+4i(ac_1+bc_2)\big)=\Lambda^2", c_am1_fixed, c_ro, c_link)
