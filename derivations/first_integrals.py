@@ -55,7 +55,6 @@ from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
 from .errata import erratum
 from .exact import Domain, certify_polys_zero, certify_zero
-from .differential import lie_derivative
 from .result import DerivationResult
 from .symbols import d, g1, g2, g3, p, w1, w2
 

@@ -30,12 +30,12 @@ import sympy as sp
 
 from . import paper
 from .certificates import CertificateLog, Outcome
-from .differential import S, T, lie_derivative
+from .differential import S, lie_derivative
 from .errata import erratum
 from .exact import Domain, certify_zero
 from .result import DerivationResult
 from .special_case import PD_RING
-from .symbols import c, d, g1, g2, g3, p, w1, w2
+from .symbols import d, g1, g2, g3, p, w1, w2
 
 NAME = "hypergeometric"
 TITLE = "Reduction to the generalised hypergeometric equation (section 5.1)"

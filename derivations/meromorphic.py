@@ -40,7 +40,6 @@ of rows gamma^(1), gamma^(2), gamma^(3) has determinant +1.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from math import comb
 
 import flint
 import mpmath

@@ -30,7 +30,6 @@ of time, ``tau = -I11 I22 t``); the printed ``eq:o12``/``c's`` solve the printed
 """
 from __future__ import annotations
 
-import mpmath
 import sympy as sp
 
 from . import paper
@@ -190,7 +189,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
     result.formula("o12", "eq:o12, c's", "General solution (rate $A=1$), $r=\\pm\\sqrt{I_{11}I_{22}}$",
                    r"\omega_1=" + sp.latex(solution[w1].subs({T: sp.Symbol(r"\tanh t"), S: sp.Symbol(r"\operatorname{sech} t")}))
                    + r",\quad \omega_2=" + sp.latex(solution[w2].subs({T: sp.Symbol(r"\tanh t"), S: sp.Symbol(r"\operatorname{sech} t")})),
-                   c_sol, *numeric_certs, c_line)
+                   c_uv, c_uv_sol, c_sol, *numeric_certs, c_line)
 
     # 5. the printed general solution
     printed = paper.printed_o12(1, 1)
@@ -230,7 +229,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
                              F1.subs(solution, simultaneous=True) - paper.ENLEV_VALUE, RING.domain,
                              expect=Outcome.FAIL)
     result.formula("integrals", "section 2", "First integrals",
-                   r"F_1=" + sp.latex(sp.expand(F1)) + r",\quad F_2=" + sp.latex(F2), c_f1, c_f2)
+                   r"F_1=" + sp.latex(sp.expand(F1)) + r",\quad F_2=" + sp.latex(F2), c_f1, c_f1p, c_f2)
     result.formula("enlev", "eq:enlev", "Energy on the normalised solution ($D=I_{13}^2I_{22}+I_{23}^2I_{11}$)",
                    r"F_1=\frac{(I_{11}I_{22})^2}{D}", c_en)
     result.errata.append(erratum(

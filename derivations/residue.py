@@ -50,7 +50,7 @@ from .errata import erratum
 from .exact import Domain, Extension, certify_zero
 from .result import DerivationResult
 from .special_case import C_EXT, PD_DOMAIN, poisson_matrix
-from .symbols import I11, I13, I22, I23, c, d, p, r, w1, w2
+from .symbols import I11, I13, I22, I23, c, d, p, r
 from .differential import S, T
 
 NAME = "residue"
@@ -106,7 +106,6 @@ def frobenius_obstructions(p_value: int) -> list[tuple[int, str, sp.Expr]]:
     A = [[[zero, zero, a * K.convert(csch[k])], [zero, zero, a * K.convert(coth[k])],
           [a * e * K.convert(csch[k]), -a * K.convert(coth[k]), zero]] for k in range(p_value + 2)]
     # eigenvectors of A0 = a [[0,0,1],[0,0,1],[e,-1,0]]: right v, left l, l.v
-    P = K.convert(p_value)
     eig = {}
     for nu in (-p_value, 0, p_value):
         if nu == 0:

@@ -36,7 +36,7 @@ from .errata import erratum
 from .exact import Domain, Extension, certify_zero
 from .numeric import corroborate, mp_function, ode_residual
 from .result import DerivationResult
-from .symbols import I11, I13, I22, I23, I33, c, d, g1, g2, g3, p, r, w1, w2, x
+from .symbols import I11, I13, I22, I23, I33, c, d, p, r, w1, w2, x
 from . import model
 
 NAME = "special_case"
