@@ -285,3 +285,14 @@ THEOREM31 = Printed(
 
 NECCG2 = Printed("eq:neccg2", r"ac_1+bc_2=0,\ c_1^2+c_2^2-4(a^2+b^2)=4p^2", "section 3.1, Remark")
 NECC2 = Printed("eq:necc2", r"c_1=b=0,\ c_2^2-4a^2=4p^2", "Theorem 3.1")
+
+RIG = Printed("eq:rig", r"\dot u=A+Bu+Cu^2,\ A=\tfrac12(\omega_2-i\omega_1),\ B=-i\omega_3,\ C=\tfrac12(\omega_2+i\omega_1)",
+              "section 5.2")
+RZEDU = Printed(
+    "eq:2rzedu",
+    r"p(z)=\frac{z^2(z^2+4icz-4)-1}{z(z^2+1)(z^2+2icz-1)},\ q(z)=\frac{p^2}{4(c^2-1)}\frac1{z^2}+\frac{p^2}{(z^2+1)^2}",
+    "section 5.2",
+)
+RLIN = Printed("eq:rlin", r"r=\frac PQ,\ P=\sum_{i=0}^8p_iz^i,\ Q=4(c^2-1)z^2(z^2+1)^2(2cz-i(z^2-1))^2",
+               "section 5.2")
+DELTAI = Printed("eq:Deltai", r"\Delta_0=\Delta_5=i\frac pd,\ \Delta_1=\Delta_2=p,\ \Delta_3=\Delta_4=2", "section 5.2")

@@ -49,6 +49,7 @@ OUTPUTS = (
     ("integrals_table.tex.j2", "integrals_table.tex", ("first_integrals",)),
     ("basis_tables.tex.j2", "basis_tables.tex", ("meromorphic",)),
     ("monodromy_tables.tex.j2", "monodromy_tables.tex", ("residue",)),
+    ("galois_tables.tex.j2", "galois_tables.tex", ("galois",)),
     ("certificate_costs.tex.j2", "certificate_costs.tex", ()),
 )
 
@@ -143,6 +144,8 @@ def context(build: Build) -> dict:
         if "first_integrals" in build.results else [],
         "basis_ps": [r["p"] for r in build.results["meromorphic"].exports["rows"]]
         if "meromorphic" in build.results else [],
+        "galois_rows": build.results["galois"].exports["log_rows"] if "galois" in build.results else [],
+        "prop_rows": build.results["galois"].exports["prop_rows"] if "galois" in build.results else [],
         "log_rows": build.results["residue"].exports["log_rows"] if "residue" in build.results else [],
         "body_rows": build.results["residue"].exports["body_rows"] if "residue" in build.results else [],
         "basis_rows": build.results["meromorphic"].exports["rows"] if "meromorphic" in build.results else [],

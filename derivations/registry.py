@@ -8,10 +8,10 @@ from __future__ import annotations
 
 from types import ModuleType
 
-from . import first_integrals, hypergeometric, kovalevskaya, meromorphic, model, residue, special_case
+from . import first_integrals, galois, hypergeometric, kovalevskaya, meromorphic, model, residue, special_case
 
 DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, kovalevskaya, residue, hypergeometric,
-                                                   meromorphic, first_integrals)}
+                                                   meromorphic, first_integrals, galois)}
 
 
 def requirements(name: str) -> tuple[str, ...]:

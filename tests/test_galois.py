@@ -1,0 +1,48 @@
+"""Logarithms at s1 = i of the linear equation eq:2rzedu: exact verdicts against a numerical monodromy.
+
+Independent route: integrate w'' + p(z) w' + q(z) w = 0 (the printed p, q, typed here) around
+|z - i| = 0.3 with SciPy; the exponent difference is an integer, so the monodromy is a scalar
+matrix exactly when there is no logarithm (otherwise it is a non-trivial Jordan block).
+"""
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from derivations.options import BuildOptions
+from derivations.pipeline import derive
+
+
+def monodromy(p, d, center=1j, radius=0.3):
+    c = np.sqrt(d * d + 1)
+
+    def coefficients(z):
+        pz = (z**2 * (z**2 + 4j * c * z - 4) - 1) / (z * (z**2 + 1) * (z**2 + 2j * c * z - 1))
+        qz = p**2 / (4 * (c * c - 1)) / z**2 + p**2 / (z**2 + 1) ** 2
+        return pz, qz
+
+    def rhs(th, y):
+        z = center + radius * np.exp(1j * th)
+        dz = 1j * radius * np.exp(1j * th)
+        pz, qz = coefficients(z)
+        Y = y.reshape(2, 2)  # columns: two solutions (w, w')
+        return (np.array([[0, 1], [-qz, -pz]]) @ Y * dz).ravel()
+
+    sol = solve_ivp(rhs, (0, 2 * np.pi), np.eye(2, dtype=complex).ravel(), method="DOP853", rtol=1e-12, atol=1e-12)
+    return sol.y[:, -1].reshape(2, 2)
+
+
+@pytest.fixture(scope="module")
+def verdicts():
+    rows = derive(BuildOptions(pmax=4), ["galois"]).results["galois"].exports["log_rows"]
+    return {row["p"]: row["s1"] for row in rows}
+
+
+@pytest.mark.parametrize("p", [1, 2, 3, 4])
+def test_s1_verdict_matches_numeric_monodromy(verdicts, p):
+    M = monodromy(p, 0.75)
+    scalar = M[0, 0]
+    deviation = np.max(np.abs(M - scalar * np.eye(2)))
+    if verdicts[p] == "no log":
+        assert p % 2 == 1 and deviation < 1e-8
+    else:
+        assert p % 2 == 0 and deviation > 1e-3
