@@ -6,10 +6,11 @@ matrix exactly when there is no logarithm (otherwise it is a non-trivial Jordan 
 """
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
 
 from derivations.options import BuildOptions
 from derivations.pipeline import derive
+
+from conftest import circle_monodromy
 
 
 def monodromy(p, d, center=1j, radius=0.3):
@@ -20,15 +21,11 @@ def monodromy(p, d, center=1j, radius=0.3):
         qz = p**2 / (4 * (c * c - 1)) / z**2 + p**2 / (z**2 + 1) ** 2
         return pz, qz
 
-    def rhs(th, y):
-        z = center + radius * np.exp(1j * th)
-        dz = 1j * radius * np.exp(1j * th)
+    def matrix(z):
         pz, qz = coefficients(z)
-        Y = y.reshape(2, 2)  # columns: two solutions (w, w')
-        return (np.array([[0, 1], [-qz, -pz]]) @ Y * dz).ravel()
+        return np.array([[0, 1], [-qz, -pz]])  # (w, w')
 
-    sol = solve_ivp(rhs, (0, 2 * np.pi), np.eye(2, dtype=complex).ravel(), method="DOP853", rtol=1e-12, atol=1e-12)
-    return sol.y[:, -1].reshape(2, 2)
+    return circle_monodromy(matrix, center, radius, 2)
 
 
 @pytest.fixture(scope="module")

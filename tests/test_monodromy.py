@@ -7,23 +7,21 @@ monodromy matrix with the identity: identity <=> no logarithms (the exponents
 """
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
 
 from derivations.options import BuildOptions
 from derivations.pipeline import derive
 
+from conftest import circle_monodromy
+
 
 def monodromy(p, d, radius=0.6):
-    a, c, t0 = p / d, np.sqrt(d * d + 1), 1j * np.pi / 2
+    a, c = p / d, np.sqrt(d * d + 1)
 
-    def rhs(th, y):
-        t = t0 + radius * np.exp(1j * th)
+    def matrix(t):
         w1, w2 = a * np.tanh(t), -a * c / np.cosh(t)
-        A = np.array([[0, 0, -w2], [0, 0, w1], [w2, -w1, 0]])
-        return (A @ y.reshape(3, 3) * 1j * radius * np.exp(1j * th)).ravel()
+        return np.array([[0, 0, -w2], [0, 0, w1], [w2, -w1, 0]])
 
-    sol = solve_ivp(rhs, (0, 2 * np.pi), np.eye(3, dtype=complex).ravel(), method="DOP853", rtol=1e-12, atol=1e-12)
-    return sol.y[:, -1].reshape(3, 3)
+    return circle_monodromy(matrix, 1j * np.pi / 2, radius, 3)
 
 
 @pytest.fixture(scope="module")
