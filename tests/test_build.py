@@ -45,7 +45,7 @@ def test_volatile_costs_are_written_but_not_compared(tmp_path, default_build):
 
 def test_perturbed_omega_fails_the_build_and_leaves_output_untouched(tmp_path, monkeypatch, capsys):
     out = tmp_path / "generated"
-    write_atomically(derive(BuildOptions(pmax=3)), out)
+    write_atomically(derive(BuildOptions(pmax=3), ["special_case"]), out)
     before = tree_digest(out)
     original = model.derive_general_solution
 
@@ -65,7 +65,7 @@ def test_perturbed_omega_fails_the_build_and_leaves_output_untouched(tmp_path, m
 
 def test_failure_while_rendering_leaves_output_untouched(tmp_path, monkeypatch):
     out = tmp_path / "generated"
-    build = derive(BuildOptions(pmax=2))
+    build = derive(BuildOptions(pmax=2), ["special_case"])
     write_atomically(build, out)
     before = tree_digest(out)
     import derivations.pipeline as pipeline
