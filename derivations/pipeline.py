@@ -40,7 +40,8 @@ VOLATILE = ("certificate_costs.json", "certificate_costs.tex")
 # (template, output file, derivations the output needs)
 OUTPUTS = (
     ("init.py.j2", "__init__.py", ()),
-    ("suslov_formulas.py.j2", "suslov_formulas.py", ("model", "special_case", "first_integrals", "meromorphic", "kovalevskaya")),
+    ("suslov_formulas.py.j2", "suslov_formulas.py", ("model", "special_case", "first_integrals", "meromorphic", "kovalevskaya",
+                                                "scattering")),
     ("suslov_formulas.tex.j2", "suslov_formulas.tex", ()),
     ("formulas_body.tex.j2", "formulas_body.tex", ()),
     ("certificates_table.tex.j2", "certificates_table.tex", ()),
@@ -144,6 +145,7 @@ def context(build: Build) -> dict:
         if "first_integrals" in build.results else [],
         "basis_ps": [r["p"] for r in build.results["meromorphic"].exports["rows"]]
         if "meromorphic" in build.results else [],
+        "scattering": build.results["scattering"].exports if "scattering" in build.results else None,
         "galois_rows": build.results["galois"].exports["log_rows"] if "galois" in build.results else [],
         "prop_rows": build.results["galois"].exports["prop_rows"] if "galois" in build.results else [],
         "log_rows": build.results["residue"].exports["log_rows"] if "residue" in build.results else [],

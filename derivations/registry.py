@@ -8,10 +8,11 @@ from __future__ import annotations
 
 from types import ModuleType
 
-from . import first_integrals, galois, hypergeometric, kovalevskaya, meromorphic, model, residue, special_case
+from . import (first_integrals, galois, hypergeometric, kovalevskaya, meromorphic, model, residue, scattering,
+               special_case)
 
 DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, kovalevskaya, residue, hypergeometric,
-                                                   meromorphic, first_integrals, galois)}
+                                                   meromorphic, first_integrals, scattering, galois)}
 
 
 def requirements(name: str) -> tuple[str, ...]:
