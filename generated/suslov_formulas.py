@@ -505,6 +505,44 @@ def _theta(t):
         return np.where(t >= 0, 2.0 * np.arctan(np.exp(-np.abs(t))), np.pi - 2.0 * np.arctan(np.exp(-np.abs(t))))
 
 
+# 2 pi = _C1 + _C2 + _C3 with _C1, _C2 of 30 significant bits: k * _C1 and k * _C2 are exact
+# for |k| < 2^23 (Cody and Waite's argument reduction).
+_C1, _C2, _C3 = 6.283185303211212, 3.9683743166540886e-09, 2.068073192717642e-18
+_SPLIT = 134217729.0  # 2^27 + 1 (Dekker's splitting)
+
+
+def _two_prod(a, b):
+    """(h, l) with h + l = a * b exactly (Dekker; no FMA needed)."""
+    h = a * b
+    ta = _SPLIT * a
+    a1 = ta - (ta - a)
+    a2 = a - a1
+    tb = _SPLIT * b
+    b1 = tb - (tb - b)
+    b2 = b - b1
+    return h, ((a1 * b1 - h) + a1 * b2 + a2 * b1) + a2 * b2
+
+
+def _phase_cos_sin(p, d, t):
+    """cos and sin of the phase (p/d) t for float t (array), accurate to ~1e-16 absolute.
+
+    Why: the plain product (p/d) * t carries the relative rounding of p/d and of the
+    product, i.e. an absolute phase error ~ 1e-16 (p/d) |t| (1e-9 at t = 1e4, d = 1e-3).
+    Here p/d = q + r/d with r = p - q d exact, q t = h + l exactly, and the reduction
+    modulo 2 pi subtracts k (_C1 + _C2 + _C3) with exact products.  Valid for
+    |phase| < 2^23 * 2 pi (5e7); beyond, the mpmath twin is the careful evaluation.
+    """
+    t = np.asarray(t, dtype=float)
+    q = p / d
+    qd_h, qd_l = _two_prod(q, d)
+    r = (p - qd_h) - qd_l
+    h, l = _two_prod(q, t)
+    l = l + (r / d) * t
+    k = np.round(h / _C1)
+    reduced = ((h - k * _C1) - k * _C2) + (l - k * _C3)
+    return np.cos(reduced), np.sin(reduced)
+
+
 def gamma_basis(t, p, d):
     """Real orthonormal basis of solutions of the Poisson equations for odd p (Theorem 6.1, corrected).
 
@@ -522,7 +560,8 @@ def gamma_basis(t, p, d):
     (cos th = tanh t, sin th = sech t) whose coefficients are bounded by 2: no
     cancellation for large p, no overflow for any t, no removable singularity at t = 0.
     Coefficients are computed once per (p, d) with mpmath and cached.  Absolute
-    accuracy about 1e-14 for p <= 15; the phase (p/d) t carries the relative rounding
+    accuracy about 1e-14 for p <= 15; the phase (p/d) t is formed and reduced modulo 2 pi in
+    double-double arithmetic (:func:`_phase_cos_sin`), so large |t| p/d costs no digits
     of t itself (|t| p/d * 1e-16).
 
     Raises ValueError for even or non-integer p, p outside the certified range,
@@ -543,8 +582,7 @@ def gamma_basis(t, p, d):
     out = np.empty(t.shape + (3, 3))
     for j in range(3):
         out[..., 0, j] = series(rows[0][j][0])
-    phase = (p / d) * t
-    cphi, sphi = np.cos(phase), np.sin(phase)
+    cphi, sphi = _phase_cos_sin(p, d, t)
     for j in range(3):
         re, im = series(rows[1][j][0]), series(rows[1][j][1])
         out[..., 1, j] = cphi * re - sphi * im
