@@ -174,9 +174,21 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                            "angle (limit)", (1 - 2 * I_UNIT * exp_s * sig) - (1 - 2 * sig), EXPONENTIALS)
     c_limit_printed = certify_zero(log, "printed: 1 - 2 i exp(pi i/2) sigma1 = 1 - 2 sigma1", "angle (limit)",
                                    (1 - 2 * I_UNIT * I_UNIT * sig) - (1 - 2 * sig), EXPONENTIALS, expect=Outcome.FAIL)
+    X = sp.Symbol("X")  # exp(s) = exp(-1/2) as printed (no pi i): transcendental, a free symbol
+    c_factor_printed = certify_zero(log, "printed factor exp(beta1+beta2-alpha1-alpha2-alpha3) (no pi i) gives the real "
+                                    "limit 1 - 2 sigma1", "Prop. 5.1", (1 - 2 * I_UNIT * X * sig) - (1 - 2 * sig),
+                                    Domain("Q(X, sigma1)[i]/(i^2+1)", EXPONENTIALS.extensions), expect=Outcome.FAIL)
     c_route = certify_zero(log, "the two routes agree: 1 - 2 G1(0)^2 = 1 - 2 sigma1 with G1(0) = -cos(pi p/2)/cosh(...)",
                            "Theorem 5.2", (1 - 2 * (cos_y / cosh_x) ** 2) - (1 - 2 * sigma1), EXPONENTIALS)
     c_grid = _grid_certificate(log)
+    at_p2 = {E: -1}  # p = 2: cos(pi p/2) = -1 < 0
+    c_angle_printed = certify_zero(log, "p = 2: printed cos(Delta psi/2) = cos(pi p/2)/cosh(pi p/(2d)) equals the "
+                                   "value |cos(pi p/2)|/cosh(...) of an angle in [0, pi]", "Theorem 5.2",
+                                   (cos_y / cosh_x).subs(at_p2) - 1 / cosh_x, EXPONENTIALS, expect=Outcome.FAIL)
+    g1_inf, cos_dpsi = sp.symbols("g1_inf cos_dpsi")
+    c_text_printed = certify_zero(log, "text: gamma1(+oo) = cos(Delta psi), with cos(Delta psi) = -gamma1(+oo)",
+                                  "ss (text)", (g1_inf - cos_dpsi).subs(cos_dpsi, -g1_inf), Domain("Q(g1_inf)"),
+                                  expect=Outcome.FAIL)
 
     # the emitted evaluation form
     tanh_x, sech_x = shx / chx, 1 / chx
@@ -205,7 +217,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     result.errata.append(erratum(
         paper.MONODROMY_FACTOR, "corrected",
         r"\mathcal F_1\to\mathcal F_1-2i\exp\big(\pi i(\beta_1+\beta_2-\alpha_1-\alpha_2-\alpha_3)\big)(\cdots)",
-        "the exponent lacks the factor pi i; with it exp(pi i s) = -i (s = -1/2)", c_s, c_limit))
+        "the exponent lacks the factor pi i (as printed the limit is not even real); with it exp(pi i s) = -i "
+        "(s = -1/2)", c_factor_printed, c_s, c_limit))
     result.errata.append(erratum(
         paper.LIMIT_GAMMA1, "corrected",
         r"\lim_{t\to\infty}\gamma_1=1-2i\exp(-\pi i/2)\sigma_1=1-2\frac{\cos^2(\pi p/2)}{\cosh^2(\pi p/(2d))}",
@@ -216,7 +229,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         r"\cos\frac{\Delta\psi}2=\frac{|\cos(\pi p/2)|}{\cosh(\pi p/(2d))}\ (q=d),\ \Delta\psi\in[0,\pi]",
         "q is undefined in the paper: derivation (beta = 1/2 -+ ip/(2d)) and integration give q = d; without the "
         "absolute value the printed right-hand side is -gamma_1(0), negative for 4k+1 < p < 4k+3, which would put "
-        "Delta psi outside [0, pi]", c_sigma, c_route, c_grid))
+        "Delta psi outside [0, pi]", c_angle_printed, c_sigma, c_route, c_grid))
     result.errata.append(erratum(
         paper.ANGLE_P, "corrected",
         r"d=\sqrt{\frac{I_{11}-I_{22}}{I_{22}}},\ p=\sqrt{\frac{I_{11}I_{22}(I_{11}-I_{22})}{I_{11}I_{22}I_{33}-1}}",
@@ -226,7 +239,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         r"\gamma(t)\to(-\cos\Delta\psi,\ \sin\Delta\psi\cos(at+\varphi),\ -\sin\Delta\psi\sin(at+\varphi))^T,\ a=p/d",
         "the text's first component contradicts cos Delta psi = -lim gamma1 two lines later (the formula is "
         "the right one: the integration confirms it); the sense of rotation follows omega1 -> +a at +oo",
-        c_half, c_grid))
+        c_text_printed, c_half, c_grid))
     result.exports.update(grid={"p": GRID_P, "d": GRID_D, "dps": GRID_DPS, "digits": GRID_DIGITS},
                           certificates={"angle": c_grid.key, "stable": c_stable.key, "route": c_route.key})
     return result

@@ -616,7 +616,7 @@ def gamma_basis_mp(t, p, d, dps=50):
         return +out
 
 
-# certified by the build: scattering:234 (integration grid), scattering:235 (evaluation form)
+# certified by the build: scattering:235 (integration grid), scattering:238 (evaluation form)
 def _angle_parts(p, d):
     """(|sin(pi p/2)|, |cos(pi p/2)|, x = pi |p|/(2d)) in float64, the argument reduced exactly.
 
