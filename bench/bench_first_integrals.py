@@ -34,6 +34,7 @@ import sympy as sp
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from bench.machine_info import cpu_name  # noqa: E402
 from derivations import first_integrals as fi  # noqa: E402
 from derivations.certificates import CertificateLog  # noqa: E402
 from derivations.symbols import d, g1, g2, g3, p, w1, w2  # noqa: E402
@@ -42,14 +43,7 @@ FIELD = {w1: d / (p * (d**2 + 1)) * w2**2, w2: -d / p * w1 * w2}
 
 
 def machine() -> str:
-    cpu = "unknown CPU"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
+    cpu = cpu_name()
     return (f"{cpu}; {platform.machine()}; Python {platform.python_version()}; python-flint {flint.__version__}; "
             f"SymPy {sp.__version__}")
 

@@ -61,6 +61,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from generated.suslov_formulas import gamma_basis, gamma_basis_mp, omega  # noqa: E402
+from bench.machine_info import cpu_name  # noqa: E402
 
 try:  # optional: the Taylor integrator heyoka (pip install heyoka)
     import heyoka as hy
@@ -93,14 +94,7 @@ REL_FAIL = 100.0      # an error above REL_FAIL * requested tolerance is a failu
 # machine
 
 def machine() -> dict:
-    cpu = platform.processor() or ""
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
+    cpu = cpu_name()
     u = platform.uname()
     versions = {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
                 "mpmath": mpmath.__version__, "matplotlib": matplotlib.__version__,
@@ -109,7 +103,7 @@ def machine() -> dict:
         affinity = len(os.sched_getaffinity(0))
     except AttributeError:
         affinity = None
-    return {"cpu": cpu or "unknown CPU", "machine": u.machine, "system": f"{u.system} {u.release}",
+    return {"cpu": cpu, "machine": u.machine, "system": f"{u.system} {u.release}",
             "cpu_count": os.cpu_count(), "cpus_usable": affinity, "versions": versions,
             "mpmath_backend": mpmath.libmp.BACKEND}
 
@@ -771,6 +765,20 @@ def one_off(r):
     return first + (r.get("compile_s") or 0.0)
 
 
+def cheapest_table(runs, single_shot):
+    """Markdown rows: per problem, the cheapest non-failed run reaching each target (median or one-off time)."""
+    rows = ["| problem | " + " | ".join(f"error <= {t:.0e}" for t in TARGETS) + " |",
+            "|---|" + "---|" * len(TARGETS)]
+    for problem in PROBLEMS:
+        cells = []
+        for t in TARGETS:
+            r = cheapest(runs, problem, t, single_shot=single_shot)
+            cost = one_off(r) if (r and single_shot) else (r["time_median_s"] if r else None)
+            cells.append(f"{r['method']}, {r['setting']}: {fmt_t(cost)}" if r else "—")
+        rows.append(f"| {problem} | " + " | ".join(cells) + " |")
+    return rows
+
+
 def cheapest(runs, problem, target, method=None, single_shot=False, exclude=()):
     ok = [r for r in runs if r["problem"] == problem and not r["failed"] and r["error"] <= target
           and r["time_median_s"] is not None and "window" not in r and "grid" not in r
@@ -989,26 +997,12 @@ def write_markdown(path, meta, refs, runs, hazard, checks, window_runs):
     L.append("")
     L.append("## Cheapest run per accuracy target (not failed, full window)")
     L.append("")
-    L.append("| problem | " + " | ".join(f"error <= {t:.0e}" for t in TARGETS) + " |")
-    L.append("|---|" + "---|" * len(TARGETS))
-    for problem in PROBLEMS:
-        cells = []
-        for t in TARGETS:
-            r = cheapest(runs, problem, t)
-            cells.append(f"{r['method']}, {r['setting']}: {fmt_t(r['time_median_s'])}" if r else "—")
-        L.append(f"| {problem} | " + " | ".join(cells) + " |")
+    L.extend(cheapest_table(runs, single_shot=False))
     L.append("")
     L.append("The same for a single integration (one-off costs included: first call + heyoka's cold JIT compile; "
              "the first call of `gamma_basis` computes its coefficients):")
     L.append("")
-    L.append("| problem | " + " | ".join(f"error <= {t:.0e}" for t in TARGETS) + " |")
-    L.append("|---|" + "---|" * len(TARGETS))
-    for problem in PROBLEMS:
-        cells = []
-        for t in TARGETS:
-            r = cheapest(runs, problem, t, single_shot=True)
-            cells.append(f"{r['method']}, {r['setting']}: {fmt_t(one_off(r))}" if r else "—")
-        L.append(f"| {problem} | " + " | ".join(cells) + " |")
+    L.extend(cheapest_table(runs, single_shot=True))
     L.append("")
     L.append("## Time to reach an accuracy, per method (problem 2, cheapest non-failed run)")
     L.append("")

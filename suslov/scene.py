@@ -39,6 +39,8 @@ from pathlib import Path
 
 import numpy as np
 
+from generated.suslov_formulas import canonical_frame
+
 EFFECTS = ("omega", "gamma", "orientation", "integral_drift", "scattering_angle", "contact_point")
 FIGURES = {  # figure -> effect it draws
     "omega_plane": "omega",
@@ -126,14 +128,10 @@ def _body(path, table):
             raise SceneError(path, "body.inertia", "must be a 3x3 array of numbers")
         tensor = np.array([[_number(path, f"body.inertia[{i}][{j}]", rows[i][j]) for j in range(3)]
                            for i in range(3)])
-        if np.max(np.abs(tensor - tensor.T)) > 1e-12 * np.max(np.abs(tensor)):
-            raise SceneError(path, "body.inertia", "not symmetric")
-        smallest = np.linalg.eigvalsh(tensor)[0]
-        if smallest <= 0:
-            raise SceneError(path, "body.inertia", f"not positive definite (smallest eigenvalue {smallest:.6g})")
-        if math.hypot(tensor[0, 2], tensor[1, 2]) <= 1e-12 * np.max(np.abs(tensor)):
-            raise SceneError(path, "body.inertia", "I13 = I23 = 0: a = e3 is a principal axis, every motion is "
-                             "an equilibrium")
+        try:  # the generated module's validation: symmetric, positive definite, a not an eigenvector
+            canonical_frame(tensor)
+        except ValueError as exc:
+            raise SceneError(path, "body.inertia", str(exc)) from None
         return {"kind": "suslov", "inertia": tensor}
     for key in ("p", "d"):
         if key not in table:
