@@ -7,14 +7,20 @@ Usage examples::
     python build_formulas.py --pmax 51       # per-p tables up to p = 51
     python build_formulas.py --check         # rebuild elsewhere, fail if generated/ differs
     python build_formulas.py --only model    # certify one derivation (generated/ untouched)
+    python build_formulas.py --verify generated   # certify an existing tree's module, rewrite nothing
+
+Every build certifies the generated module as emitted (``derivations/roundtrip.py``):
+it is imported from the staging directory and checked against the certified objects
+before anything is moved into place.
 
 Exit status: 0 success; 1 a certificate failed (the claim is named; the output
-directory is left as it was); 2 bad command line; 3 ``--check`` found
-differences.
+directory is left as it was) or ``--verify`` found a discrepancy; 2 bad command line;
+3 ``--check`` found differences.
 """
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 import tempfile
 from pathlib import Path
@@ -57,8 +63,41 @@ def parser() -> argparse.ArgumentParser:
                     help="output directory (default: generated/ for a full build)")
     ap.add_argument("--check", action="store_true",
                     help="rebuild in a temporary directory and fail if the output directory differs")
+    ap.add_argument("--verify", type=Path, metavar="DIR", default=None,
+                    help="certify the generated module in DIR (the committed generated/ or a copy) against the "
+                         "derivations without rewriting anything: exit 0, or 1 naming the first discrepancy; "
+                         "pmax is read from DIR/certificates.json")
     ap.add_argument("--quiet", action="store_true", help="no progress display")
     return ap
+
+
+def verify_tree(directory: Path, pmax: int | None, quiet: bool) -> int:
+    """--verify DIR: derive what the module needs, then run the round trip on DIR's module."""
+    from derivations.pipeline import MODULE_NEEDS
+    from derivations.roundtrip import verify
+
+    if not (directory / "suslov_formulas.py").is_file():
+        print(f"build_formulas.py: --verify {directory}: no suslov_formulas.py there", file=sys.stderr)
+        return 2
+    if pmax is None:
+        try:
+            pmax = json.loads((directory / "certificates.json").read_text(encoding="utf-8"))["pmax"]
+        except (OSError, ValueError, KeyError) as error:
+            print(f"build_formulas.py: --verify {directory}: cannot read pmax from certificates.json ({error}); "
+                  "give --pmax", file=sys.stderr)
+            return 2
+    try:
+        build = derive(BuildOptions(pmax=pmax), list(MODULE_NEEDS), Progress(quiet=quiet))
+    except CertificationFailure as failure:
+        print(f"build_formulas.py: {failure}", file=sys.stderr)
+        return 1
+    problem = verify(build, directory)
+    if problem:
+        print(f"build_formulas.py: --verify {directory}: {problem}", file=sys.stderr)
+        return 1
+    print(f"--verify: {directory / 'suslov_formulas.py'} reproduces the certified objects (pmax = {pmax}): "
+          "every emitted formula, every exact core for every p, every float path within its stated bound")
+    return 0
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -69,6 +108,11 @@ def main(argv: list[str] | None = None) -> int:
         ap.error(f"--only {unknown[0]!r}: unknown derivation (known: {', '.join(DERIVATIONS)})")
     if args.check and args.only:
         ap.error("--check compares a full build; it cannot be combined with --only")
+    if args.verify is not None:
+        if args.only or args.check or args.out:
+            ap.error("--verify DIR checks an existing tree; it cannot be combined with --only, --check or --out")
+        explicit = any(a == "--pmax" or a.startswith("--pmax=") for a in (argv if argv is not None else sys.argv[1:]))
+        return verify_tree(args.verify, args.pmax if explicit else None, args.quiet)
     options = BuildOptions(pmax=args.pmax)
     target = args.out if args.out is not None else (None if args.only else GENERATED)
 
@@ -78,13 +122,13 @@ def main(argv: list[str] | None = None) -> int:
         print(f"build_formulas.py: {failure}", file=sys.stderr)
         print("build_formulas.py: nothing was written", file=sys.stderr)
         return 1
-    print(summary(build))
-
     if args.check:
         reference = target
         with tempfile.TemporaryDirectory(prefix="suslov-check-") as tmp:
             fresh = Path(tmp) / "generated"
-            write_atomically(build, fresh)
+            if not _write(build, fresh):
+                return 1
+            print(summary(build))
             differing = compare_trees(fresh, reference)
         if differing:
             print(f"build_formulas.py: --check: {reference} differs from a fresh build in: "
@@ -93,11 +137,25 @@ def main(argv: list[str] | None = None) -> int:
         print(f"--check: {reference} is identical to a fresh build")
         return 0
     if target is None:
+        print(summary(build))
         print("(--only without --out: certified, nothing written)")
         return 0
-    write_atomically(build, target)
+    if not _write(build, target):
+        return 1
+    print(summary(build))
     print(f"wrote {target}")
     return 0
+
+
+def _write(build, target: Path) -> bool:
+    """Render, certify the emitted module (round trip) and swap into place; False on a failed certificate."""
+    try:
+        write_atomically(build, target)
+    except CertificationFailure as failure:
+        print(f"build_formulas.py: {failure}", file=sys.stderr)
+        print(f"build_formulas.py: nothing was written ({target} is unchanged)", file=sys.stderr)
+        return False
+    return True
 
 
 if __name__ == "__main__":

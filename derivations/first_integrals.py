@@ -45,16 +45,17 @@ polynomial.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from math import comb
 
-import flint
 import sympy as sp
+
+from suslov.recipes.integrals import IntegralNumerators, integral_numerators
 
 from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
 from .errata import erratum
 from .exact import Domain, certify_polys_zero, certify_zero
+from .recipe_rings import INTEGRAL_CTX as CTX, INTEGRAL_RING
 from .result import DerivationResult
 from .symbols import d, g1, g2, g3, p, w1, w2
 
@@ -62,7 +63,6 @@ NAME = "first_integrals"
 TITLE = "Polynomial first integrals $P_1,P_2,P_3$ for odd $p$ (section 6.2)"
 REQUIRES = ("special_case",)
 
-CTX = flint.fmpz_mpoly_ctx.get(("d", "w1", "w2", "g1", "g2", "g3"), "lex")
 D_, W1, W2, G1, G2, G3 = CTX.gens()
 FLINT_DOMAIN = "Z[d,w1,w2,g1,g2,g3] (fraction-free, python-flint fmpz_mpoly)"
 WRITE_OUT_MAX = 7  # P1, P2, P3 written out in the LaTeX for p <= 7
@@ -74,16 +74,6 @@ def check_odd(p_value: int) -> int:
     return p_value
 
 
-def e_coefficient(j: int, p_value: int) -> int:
-    """``e_j = binom(2j,j) prod_{m<j}((2m+1)^2 - p^2) / 4^j`` (exact integer)."""
-    num = comb(2 * j, j)
-    for m in range(j):
-        num *= (2 * m + 1) ** 2 - p_value**2
-    value, rest = divmod(num, 4**j)
-    assert rest == 0, "e_j must be an integer"
-    return value
-
-
 def hypergeometric_coefficient(j: int, p_value: int, d_value):
     """c_j of F(z) for a given d (exact for a SymPy/Fraction d)."""
     value = sp.Rational(comb(2 * j, j), 4**j)
@@ -92,16 +82,8 @@ def hypergeometric_coefficient(j: int, p_value: int, d_value):
     return value
 
 
-@dataclass
-class FractionFree:
-    """P1 = P1t/Den, P3 = M3/(K Den), P2 = M2/(K^2 Den) in Z[d, w1, w2]."""
-
-    p: int
-    P1t: object
-    M3: object
-    M2: object
-    K: object
-    Den: object
+class FractionFree(IntegralNumerators):
+    """P1 = P1t/Den, P3 = M3/(K Den), P2 = M2/(K^2 Den) in Z[d, w1, w2] (the recipe's output)."""
 
     def scaled_integral(self):
         """G = K^2 Den F3."""
@@ -111,27 +93,10 @@ class FractionFree:
         return len(self.P1t) + len(self.M2) + len(self.M3)
 
 
-def _L_scaled(poly):
-    """(d^2+1) L P = w2 dP/dw1 - (d^2+1) w1 dP/dw2."""
-    return W2 * poly.derivative("w1") - (D_**2 + 1) * W1 * poly.derivative("w2")
-
-
 def construct(p_value: int) -> tuple[FractionFree, bool]:
-    """The fraction-free P1, P2, P3; the flag says whether w1 divided exactly."""
-    J = (check_odd(p_value) - 1) // 2
-    F1 = (D_**2 + 1) * W1**2 + W2**2
-    R = CTX.constant(e_coefficient(0, p_value))
-    Den = CTX.constant(1)
-    for k in range(J):
-        q_k = (2 * k + 1) ** 2 * D_**2 + p_value**2
-        R = q_k * F1 * R + e_coefficient(k + 1, p_value) * D_ ** (2 * k + 2) * W2 ** (2 * k + 2)
-        Den = Den * q_k
-    P1t = W1 * R
-    K = p_value * (D_**2 + 1)
-    M3 = -D_ * _L_scaled(P1t)
-    N = K**2 * P1t - D_ * _L_scaled(M3)
-    quotient, remainder = divmod(W2 * N, W1)
-    return FractionFree(p_value, P1t, M3, quotient, K, Den), remainder.is_zero()
+    """The fraction-free P1, P2, P3 from the shared recipe; the flag says whether w1 divided exactly."""
+    numerators = integral_numerators(check_odd(p_value), INTEGRAL_RING)
+    return FractionFree(**vars(numerators)), numerators.exact
 
 
 def flint_from_sympy(expr) -> object:
@@ -264,11 +229,12 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     result = DerivationResult(NAME)
     field_pd = special_result.exports["field"]
     QD = Domain("Q(d)[omega, gamma]")
-    rows, forms, proofs = [], {}, {}
+    rows, forms, proofs, objects = [], {}, {}, {}
     refuted = {"p23": [], "pol_sol": []}
     for p_value in options.odd_p_values():
         field = {k: v.subs(p, p_value) for k, v in field_pd.items()}
         ff, certs = certify_p(log, p_value, field_pd)
+        objects[p_value] = ff
         proofs[p_value] = certs[0]
         row = {"p": p_value, "degree": p_value, "terms": [len(ff.P1t), len(ff.M2), len(ff.M3)],
                "certificates": [c.key for c in certs]}
@@ -327,5 +293,5 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                    r"P_3=-\frac{d}{p}LP_1,\quad P_2=\frac{\omega_2}{\omega_1}\Big(P_1-\frac{d}{p}LP_3\Big),\quad "
                    r"L=\frac{\omega_2}{d^2+1}\partial_{\omega_1}-\omega_1\partial_{\omega_2}",
                    *proofs.values())
-    result.exports.update(rows=rows)
+    result.exports.update(rows=rows, objects=objects)
     return result

@@ -39,6 +39,7 @@ from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero, normal_form
+from .emit import Emitted
 from .result import DerivationResult
 from .symbols import I11, I13, I22, I23, g1, g2, g3, r, w1, w2
 
@@ -198,7 +199,18 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     result.errata.append(erratum(paper.LINA, "confirmed", paper.LINA.latex,
                                  "exact identity of vector fields; p^2 changes sign as eq:necc1 / eq:necc11 say",
                                  c_lina, c_lina_p))
-    result.exports.update(lambda_real=real, lambda_imag=imag, point=point)
+    # the two cases of Theorem 3.1 as emitted by meromorphy(): Lambda^2 restricted (real there)
+    restricted = {name: sp.factor(sp.cancel(real.subs(zero, 0))) for name, zero in (("i13", I13), ("i23", I23))}
+    c_real_cases = certify_zero(log, "Lambda^2 is real on I13 = 0 and on I23 = 0 (its imaginary part vanishes "
+                                "identically there), so p^2 = Re Lambda^2 restricted", "eq:neccg1",
+                                [imag.subs(I13, 0), imag.subs(I23, 0)], DOMAIN)
+    emit = [Emitted("lambda_squared", (I11, I22, I13, I23), ((r, sp.sqrt(I11 * I22)),), (real, imag),
+                    (c_char.key, c_lam.key), "(Re, Im) of Lambda^2 at the Darboux point with m3 = i sqrt(I11 I22)."),
+            Emitted("p_squared_i13_zero", (I11, I22, I23), (), (restricted["i13"],), (c_lam.key, c_real_cases.key),
+                    "p^2 = Lambda^2 in the case I13 = 0."),
+            Emitted("p_squared_i23_zero", (I11, I22, I13), (), (restricted["i23"],), (c_lam.key, c_real_cases.key),
+                    "p^2 = Lambda^2 in the case I23 = 0.")]
+    result.exports.update(lambda_real=real, lambda_imag=imag, point=point, emit=emit)
     return result
 
 

@@ -39,23 +39,27 @@ of rows gamma^(1), gamma^(2), gamma^(3) has determinant +1.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import flint
 import mpmath
 import sympy as sp
 
+from suslov.recipes import basis as recipe
+from suslov.recipes.basis import Solution
+from suslov.recipes.integrals import e_coefficient
+
 from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
 from .errata import erratum
-from .first_integrals import e_coefficient
+from .recipe_rings import BASIS_CTX as CTX, BASIS_RING
 from .result import DerivationResult
 
 NAME = "meromorphic"
 TITLE = "Meromorphic solutions for odd $p$ and the orthonormal basis (sections 5.1, 6.1)"
 REQUIRES = ("hypergeometric",)
 
-CTX = flint.fmpq_mpoly_ctx.get(("x", "d", "i"), "lex")
+RING = BASIS_RING
 X, D, I = CTX.gens()
 ONE = CTX.constant(1)
 I2 = I**2 + 1
@@ -77,22 +81,9 @@ def at_x(poly, value: int):
     return poly.compose(CTX.constant(value), D, I)
 
 
-@dataclass
-class Solution:
-    """c-free numerators (M1, M2~, M3~) over (1+x^2)^p (complex: i kept), rate r = 0 or p/d."""
-
-    p: int
-    rate: int  # 0 or 1 (times p/d)
-    M: list
-    divisions_exact: bool = True
-    notes: list = field(default_factory=list)
-
-
 def DD(N, p: int, rate: int, q: int | None = None):
-    """d * numerator of D(e^{i r t} N/(1+x^2)^q) over (1+x^2)^(q+1), r = rate p/d, q = p by default."""
-    q = p if q is None else q
-    base = D * (X * N.derivative("x") * (1 + X**2) - 2 * q * X**2 * N)
-    return red(base + rate * I * p * N * (1 + X**2)) if rate else base
+    """d * numerator of D(e^{i r t} N/(1+x^2)^q) over (1+x^2)^(q+1) (the recipe's operator)."""
+    return recipe.DD(N, p, rate, RING, q)
 
 
 def third_order_residual(N, p: int, rate: int):
@@ -115,49 +106,16 @@ def third_order_residual(N, p: int, rate: int):
 
 
 def gamma1_numerator(p: int):
-    """(x^2-1) sum_j Den1 c_j 4^j x^{2j} (1+x^2)^{p-1-2j}  (Den1 = prod_{m<J} ((2m+1)^2 d^2 + p^2))."""
-    J = (p - 1) // 2
-    total = CTX.constant(0)
-    for j in range(J + 1):
-        tail = ONE
-        for m in range(j, J):
-            tail *= (2 * m + 1) ** 2 * D**2 + p * p
-        total += e_coefficient(j, p) * D ** (2 * j) * tail * 4**j * X ** (2 * j) * (1 + X**2) ** (p - 1 - 2 * j)
-    return (X**2 - 1) * total
+    return recipe.gamma1_numerator(p, RING)
 
 
 def hypergeometric_polynomials(p: int):
-    """Den2 F(-y) and Den2 Fhat as polynomials in y = x^2 (written in the variable x)."""
-    J = (p - 1) // 2
-    den2 = [(3 + 2 * j) ** 2 * D**2 + p * p for j in range(J)]
-    F = CTX.constant(0)
-    for k in range(J + 1):
-        rising = sp.Rational(sp.rf(sp.Rational(1 - p, 2), k), sp.factorial(k))  # (b)_k / k!
-        coefficient = CTX.constant(flint.fmpq(int(rising.p), int(rising.q)))
-        for j in range(k):
-            coefficient *= ((2 - p + 2 * j) * D + I * p) * ((3 + 2 * j) * D - I * p)
-        for j in range(k, J):
-            coefficient *= den2[j]
-        F += red(coefficient) * (-1) ** k * X**k  # X stands for y here
-    F = red(F)
-    Fhat = red((D * (p - 1) * X - D - I * p) * F - 2 * D * X * (X + 1) * F.derivative("x"))
-    return F, Fhat
+    return recipe.hypergeometric_polynomials(p, RING)
 
 
 def in_y_squared(poly):
     """poly(y) -> poly(x^2)."""
-    return poly.compose(X**2, D, I)
-
-
-def complete(N1, p: int, rate: int) -> Solution:
-    """Components 2, 3 from the first (exact divisions by x and x^2 - 1)."""
-    top3, r3 = divmod(DD(N1, p, rate), X)
-    M3 = top3  # g3~ = M3 / (2p) over the common denominator of N1
-    numerator2 = red(-4 * p * p * (D**2 + 1) * X * N1 - DD(M3, p, rate))
-    M2, r2 = divmod(numerator2, X**2 - 1)  # g2~ = M2/(2 p^2)
-    # common scaling: (2p^2 N1, M2, p M3) over 2p^2 (1+x^2)^p
-    sol = Solution(p, rate, [2 * p * p * N1, M2, p * M3], r3.is_zero() and r2.is_zero())
-    return sol
+    return RING.square_x(poly)
 
 
 def poisson_residuals(sol: Solution) -> list:
@@ -186,10 +144,8 @@ class Basis:
 
 
 def construct(p: int) -> tuple[Solution, Solution]:
-    real = complete(gamma1_numerator(p), p, 0)
-    F, Fhat = hypergeometric_polynomials(p)
-    V1 = red(X * in_y_squared(red(F * Fhat)))
-    return real, complete(V1, p, 1)
+    """The shared recipe ``suslov.recipes.basis.construct`` in Q[x, d, i]/(i^2+1)."""
+    return recipe.construct(p, RING)
 
 
 def certify_p(log: CertificateLog, p: int) -> Basis:
@@ -513,11 +469,12 @@ def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
     result = DerivationResult(NAME)
     rows = []
     compare_poly_f2(log, result, options)
-    bases = {}
+    bases, objects = {}, {}
     for p in options.odd_p_values():
         c_f1 = genhip_check(log, p)
         basis = certify_p(log, p)
-        if p <= 3:
+        objects[p] = (basis.real.M, basis.complex_.M)
+        if p <= 15:
             bases[p] = basis
         rows.append({"p": p, "sigma": basis.sigma, "certificates": [c_f1.key] + [c.key for c in basis.certificates],
                      "terms": [len(m) for m in basis.real.M + basis.complex_.M]})
@@ -525,8 +482,10 @@ def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
         printed_comparisons(log, result, bases[3].certificates[2])
     compare_printed_examples(log, result, bases)
     for p, basis in sorted(bases.items()):
+        if p > 3:
+            continue
         result.formula(f"basis{p}", "gam1, gam2, gam3, eq:gam3", f"Orthonormal basis for $p={p}$ ($c=\\sqrt{{d^2+1}}$)",
                        r"\begin{aligned}" + r"\\".join(written_out(basis)) + r"\end{aligned}",
                        *[c for c in log.certificates if c.key in rows[(p - 1) // 2]["certificates"]])
-    result.exports.update(rows=rows, sigma={r["p"]: r["sigma"] for r in rows}, tables=coefficient_tables(options))
+    result.exports.update(objects=objects, bases=bases, rows=rows, sigma={r["p"]: r["sigma"] for r in rows}, tables=coefficient_tables(options))
     return result

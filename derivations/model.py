@@ -38,6 +38,7 @@ from .differential import S, T, hyperbolic_ring, lie_derivative, ode_residuals, 
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero
 from .numeric import corroborate, ode_residual
+from .emit import Emitted
 from .result import DerivationResult
 from .symbols import I11, I13, I22, I23, I33, g1, g2, g3, gamma, lam, omega, r, w1, w2
 
@@ -237,6 +238,9 @@ def run(log: CertificateLog, options) -> DerivationResult:
         "1/D is the energy of the printed solution of the printed gen12; on the solution of the derived "
         "equations the factor (I11 I22)^2 comes from the time scale of gen12", c_en_pr, c_en_true, c_en))
 
-    result.exports.update(field=field, poisson=poisson, solution=solution, coefficients=coeff,
+    emit = [Emitted("omega_general", (t, I11, I22, I13, I23, r), ((T, sp.tanh(t)), (S, sp.sech(t))),
+                    (solution[w1], solution[w2]), (c_sol.key,),
+                    "General solution of the reduced Euler equations (eq:o12 corrected), r = +-sqrt(I11 I22).")]
+    result.exports.update(field=field, poisson=poisson, solution=solution, coefficients=coeff, emit=emit,
                           energy=energy)
     return result

@@ -30,18 +30,18 @@ from pathlib import Path
 from .certificates import CertificateLog, Outcome
 from .options import BuildOptions
 from .registry import DERIVATIONS, resolve
-from .render import python_source, render
-from .symbols import w1, w2
+from .render import render
 
 ROOT = Path(__file__).resolve().parent.parent
 GENERATED = ROOT / "generated"
 VOLATILE = ("certificate_costs.json", "certificate_costs.tex")
 
+# the derivations the generated module's formulas come from (and --verify runs)
+MODULE_NEEDS = ("model", "special_case", "kovalevskaya", "meromorphic", "first_integrals", "scattering")
 # (template, output file, derivations the output needs)
 OUTPUTS = (
     ("init.py.j2", "__init__.py", ()),
-    ("suslov_formulas.py.j2", "suslov_formulas.py", ("model", "special_case", "first_integrals", "meromorphic", "kovalevskaya",
-                                                "scattering")),
+    ("suslov_formulas.py.j2", "suslov_formulas.py", MODULE_NEEDS),
     ("suslov_formulas.tex.j2", "suslov_formulas.tex", ()),
     ("formulas_body.tex.j2", "formulas_body.tex", ()),
     ("certificates_table.tex.j2", "certificates_table.tex", ()),
@@ -62,6 +62,7 @@ class Build:
     log: CertificateLog
     results: dict = field(default_factory=dict)
     seconds: dict = field(default_factory=dict)
+    round_trip_done: bool = False
 
 
 class Progress:
@@ -109,18 +110,13 @@ def derive(options: BuildOptions, only: list[str] | None = None, progress: Progr
     return build
 
 
-def _code(build: Build) -> dict:
-    code = {}
-    if "special_case" in build.results:
-        sol = build.results["special_case"].exports["solution"]
-        code["omega"] = [python_source(sol[w1]), python_source(sol[w2])]
-    if "kovalevskaya" in build.results:
-        exports = build.results["kovalevskaya"].exports
-        code["lambda2"] = [python_source(exports["lambda_real"]), python_source(exports["lambda_imag"])]
-    if "model" in build.results:
-        sol = build.results["model"].exports["solution"]
-        code["omega_general"] = [python_source(sol[w1]), python_source(sol[w2])]
-    return code
+EMITTED_ORDER = ("omega", "omega_general", "lambda_squared", "p_squared_i13_zero", "p_squared_i23_zero",
+                 "special_parameters", "scattering_angle")
+
+
+def emitted_formulas(build: Build) -> dict:
+    """``{name: Emitted}`` of every derivation that ran (their exports["emit"])."""
+    return {item.name: item for name in build.names for item in build.results[name].exports.get("emit", ())}
 
 
 def context(build: Build) -> dict:
@@ -140,7 +136,12 @@ def context(build: Build) -> dict:
         "certificate_by_key": by_key,
         "errata": errata,
         "per_p": build.results["special_case"].exports["per_p"] if "special_case" in build.results else [],
-        "code": _code(build),
+        "emitted": {name: item.source() for name, item in emitted_formulas(build).items()},
+        "emitted_order": [name for name in EMITTED_ORDER if name in emitted_formulas(build)],
+        "basis_sigma": dict(sorted(build.results["meromorphic"].exports["sigma"].items()))
+        if "meromorphic" in build.results else {},
+        "scattering_certificates": ", ".join(f"{k} {v}" for k, v in sorted(
+            build.results["scattering"].exports["certificates"].items())) if "scattering" in build.results else "-",
         "integral_ps": [r["p"] for r in build.results["first_integrals"].exports["rows"]]
         if "first_integrals" in build.results else [],
         "basis_ps": [r["p"] for r in build.results["meromorphic"].exports["rows"]]
@@ -193,7 +194,13 @@ def write_atomically(build: Build, target: Path) -> None:
     target.parent.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.new-", dir=target.parent))
     try:
-        render_into(build, staging)
+        if render_into(build, staging).count("suslov_formulas.py") and not build.round_trip_done:
+            # certify the module as emitted, then render again so the round-trip certificates are in every output
+            from .roundtrip import certify_module
+
+            certify_module(build.log, build, staging)
+            build.round_trip_done = True
+            render_into(build, staging)
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
@@ -237,6 +244,10 @@ def summary(build: Build, top: int = 5) -> str:
     for name in build.names:
         n = sum(1 for c in certs if c.derivation == name)
         lines.append(f"  {name:<16} {n:4d} certificates  {build.seconds[name]:8.3f} s")
+    trip = [c for c in certs if c.derivation == "roundtrip"]
+    if trip:
+        lines.append(f"  {'roundtrip':<16} {len(trip):4d} certificates  {sum(c.seconds for c in trip):8.3f} s"
+                     "  (the emitted module, as written)")
     lines.append(f"costliest {min(top, len(certs))}:")
     for c in sorted(certs, key=lambda c: -c.seconds)[:top]:
         lines.append(f"  {c.seconds:8.4f} s  [{c.label}] {c.claim}")

@@ -50,6 +50,7 @@ from .exact import Domain, Extension, certify_zero
 from .model import I33_FROM_DET
 from .numeric import corroborate
 from .poisson_taylor import eval_series, limit_series, ss_through
+from .emit import Emitted
 from .result import DerivationResult
 from .special_case import I_DOMAIN
 from .symbols import I11, I13, I22, I23, I33, d, g1, g2, g3, p, w1, w2
@@ -240,6 +241,11 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         "the text's first component contradicts cos Delta psi = -lim gamma1 two lines later (the formula is "
         "the right one: the integration confirms it); the sense of rotation follows omega1 -> +a at +oo",
         c_text_printed, c_half, c_grid))
-    result.exports.update(grid={"p": GRID_P, "d": GRID_D, "dps": GRID_DPS, "digits": GRID_DIGITS},
+    xs, ss, cs = sp.symbols("x s c", nonnegative=True)
+    emit = [Emitted("scattering_angle", (xs, ss, cs), (),
+                    (2 * sp.atan2(sp.sqrt(sp.tanh(xs) ** 2 + ss**2 * sp.sech(xs) ** 2), cs * sp.sech(xs)),),
+                    (c_stable.key, c_grid.key, c_route.key),
+                    "Delta psi from x = pi |p|/(2d), s = |sin(pi p/2)|, c = |cos(pi p/2)| (Theorem 5.2, evaluation form).")]
+    result.exports.update(emit=emit, grid={"p": GRID_P, "d": GRID_D, "dps": GRID_DPS, "digits": GRID_DIGITS},
                           certificates={"angle": c_grid.key, "stable": c_stable.key, "route": c_route.key})
     return result

@@ -35,6 +35,7 @@ from .differential import S, T, hyperbolic_ring, lie_derivative, ode_residuals, 
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero
 from .numeric import corroborate, mp_function, ode_residual
+from .emit import Emitted
 from .result import DerivationResult
 from .symbols import I11, I13, I22, I23, I33, c, d, p, r, w1, w2, x
 from . import model
@@ -225,7 +226,18 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                       "eigenvalues": f"0, {p_value}, -{p_value}", "level": sp.latex(p_value**2 * (d**2 + 1) / d**2),
                       "rate": sp.latex(sp.Integer(p_value) / d), "certificate": cert.key})
 
-    result.exports.update(solution=solution, field=sysfin, A0=A0, per_p=per_p,
+    # 5. the inverse map (I11, I22, I23) -> (p, d), emitted for special_case_parameters
+    p_of_inertia = -I22 * d / I23
+    c_inverse = certify_zero(log, "d^2 = I11/I22 - 1 and p = -I22 d/I23 invert the substitution I11 = I22 (d^2+1), "
+                             "I23 = -I22 d/p", "eq:necc1", [(I11 / I22 - 1).subs(SUBSTITUTION) - d**2,
+                                                           p_of_inertia.subs(SUBSTITUTION) - p], Domain("Q(p,d,I22)"))
+    tanh_t, sech_t = sp.tanh(t), sp.sech(t)
+    emit = [Emitted("omega", (t, p, d), ((T, tanh_t), (S, sech_t), (c, sp.sqrt(d**2 + 1))),
+                    (solution[w1], solution[w2]), (c_sol.key, c_form.key),
+                    "omega(t) for I13 = 0 (omegas), branch c = +sqrt(d^2+1)."),
+            Emitted("special_parameters", (I11, I22, I23), ((d, sp.sqrt(I11 / I22 - 1)),), (p_of_inertia, d),
+                    (c_inverse.key,), "(p, d) of a body with I13 = 0 (eq:necc1, corrected).")]
+    result.exports.update(solution=solution, field=sysfin, A0=A0, per_p=per_p, emit=emit,
                           p_of_inertia=-I22 * sp.Symbol("d") / I23,
                           substitution=SUBSTITUTION)
     return result

@@ -1,19 +1,36 @@
 """Runtime package: the simulator (scenes, planner, guarded integration, figures) on the generated formulas.
 
-Imports ``generated`` only, never ``derivations`` (DESIGN.md, data flow), so
-using it does not pull in SymPy.  The certified closed forms themselves live in
-``generated.suslov_formulas``; this package re-exports them under stable names.
-"""
-from generated.suslov_formulas import (  # noqa: F401
-    PMAX,
-    load_certificates,
-    omega,
-    omega_general,
-    omega_general_mp,
-    omega_mp,
-    scattering_angle,
-    scattering_angle_mp,
-)
+Every public name of ``generated.suslov_formulas`` (its ``__all__``) is available here as
+``suslov.NAME``; the import is lazy (PEP 562), so ``suslov.kernel`` and ``suslov.recipes``,
+which the generated module itself imports, can be loaded without a cycle and before
+``generated/`` exists (the build runs the recipes).
 
-__all__ = ["PMAX", "load_certificates", "omega", "omega_general", "omega_general_mp", "omega_mp", "scattering_angle",
-           "scattering_angle_mp"]
+Layers (DESIGN.md, data flow): ``suslov.kernel`` (numerical machinery) and
+``suslov.recipes`` (constructions written once, run by the build exactly and by the module
+numerically) need neither SymPy nor ``generated``; the simulator modules import
+``generated``, never ``derivations``.
+"""
+from __future__ import annotations
+
+import importlib
+
+_FORMULAS = "generated.suslov_formulas"
+
+
+def _public_names() -> list[str]:
+    return list(importlib.import_module(_FORMULAS).__all__)
+
+
+def __getattr__(name: str):
+    if name == "__all__":
+        return _public_names()
+    if name.startswith("__"):
+        raise AttributeError(name)
+    module = importlib.import_module(_FORMULAS)
+    if name in module.__all__:
+        return getattr(module, name)
+    raise AttributeError(f"module 'suslov' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_public_names()))

@@ -81,7 +81,7 @@ class Body:
     def describe(self) -> str:
         if self.special:
             return (f"case I13 = 0: p = {self.p:.12g}, d = {self.d:.12g}"
-                    + (f" (odd integer p: closed-form Poisson basis)" if self.odd_integer_p else ""))
+                    + (" (odd integer p: closed-form Poisson basis)" if self.odd_integer_p else ""))
         I11, I22, I13, I23 = self.entries
         return f"general body: I11 = {I11:.6g}, I22 = {I22:.6g}, I13 = {I13:.6g}, I23 = {I23:.6g} (det I = 1)"
 

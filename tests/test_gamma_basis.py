@@ -86,7 +86,7 @@ def test_printed_p1_gamma1_agrees():
 
 
 @pytest.mark.parametrize("kwargs, needle", [
-    ({"p": 2}, "p=2"), ({"p": 3.0}, "p=3.0"), ({"p": -3}, "p=-3"), ({"p": 10**6 + 1}, "certified range"),
+    ({"p": 2}, "p=2"), ({"p": 3.5}, "p=3.5"), ({"p": -3}, "p=-3"), ({"p": 10**6 + 1}, "certified range"),
     ({"d": 0.0}, "d=0.0"), ({"d": float("inf")}, "d=inf"), ({"t": np.nan}, "t"),
 ])
 def test_bad_input(kwargs, needle):

@@ -1,0 +1,208 @@
+"""Float paths of the generated module against its exact core and mpmath twins (numeric evidence).
+
+Part 3 of the round trip (:mod:`derivations.roundtrip`).  For each float64 function the
+module's docstring states an error bound; here the function is evaluated at seeded
+points, including the hard cases of ``tests/test_hard_cases.py`` (|t| up to 1e4, d from
+1e-3 to 1e3, p within 1e-13 of odd integers and on both branches of the exact reduction
+of pi p/2, large omega), and compared with the mpmath twin at 40 digits, for every p in
+range.  These are *evidence*, recorded with method ``numeric evidence (not a
+certificate)``: a spot check cannot prove a bound.  The seeds are fixed, so the
+certificate log is deterministic.
+
+Also checked: ``gamma_basis_mp`` against an independent evaluation of the certified
+numerators (``derivations.meromorphic.basis_mp``: SymPy ``lambdify`` of the flint objects)
+for p <= 15, the rows of ``gamma_basis`` form a rotation (det +1), ``special_case_parameters``
+chains into ``omega`` (the body's own general solution, in the returned frame, equals
+``omega(t, p, d)`` with p > 0), and ``meromorphy`` agrees with ``kovalevskaya_exponents``.
+"""
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+
+from .certificates import Certificate, CertificateLog, Outcome, stopwatch
+
+DPS = 40
+METHOD = "numeric evidence (not a certificate): float64 against the mpmath twin at 40 digits, seeded points"
+HARD_T = (-1e4, -700.0, -30.0, -1.0, -1e-8, 0.0, 1e-8, 0.3, 5.0, 711.0, 1e4)
+HARD_D = (1e-3, 0.5, 3.0, 1e3)
+BASIS_MP_CHECK_MAX = 15  # the SymPy lambdify of the certified numerators is slow beyond
+
+
+def _record(log, claim, ok, seconds, points, worst, method=METHOD):
+    return log.record(Certificate(claim, "round trip", method, Outcome.PASS if ok else Outcome.FAIL, seconds, points,
+                                  f"{points} points; worst error / bound = {worst:.3g}"))
+
+
+def _ratio(error, bound) -> float:
+    return float(error) / float(bound)
+
+
+def check_omega(log: CertificateLog, module) -> Certificate:
+    rng = np.random.default_rng(1201)
+    worst, points = 0.0, 0
+    with stopwatch() as elapsed:
+        cases = [(1, 0.5), (3, 0.5), (15, 2.0), (-4, 1.0), (2.5, 1e-3), (7, 1e3)]
+        cases += [(float(rng.uniform(-40, 40)), float(10 ** rng.uniform(-3, 3))) for _ in range(6)]
+        for p, d in cases:
+            w1, w2 = module.omega(np.array(HARD_T), p, d)
+            bound = 4e-16 * abs(p) / d * math.sqrt(d * d + 1)
+            for i, t in enumerate(HARD_T):
+                e1, e2 = module.omega_mp(t, p, d, dps=DPS)
+                worst = max(worst, _ratio(abs(w1[i] - e1), bound), _ratio(abs(w2[i] - e2), bound))
+                points += 1
+    return _record(log, "omega: float64 within 4e-16 (|p|/d) sqrt(d^2+1) of omega_mp", worst <= 1, elapsed[0], points,
+                   worst)
+
+
+def check_omega_general(log: CertificateLog, module) -> Certificate:
+    rng = np.random.default_rng(1202)
+    worst, points = 0.0, 0
+    with stopwatch() as elapsed:
+        for _ in range(8):
+            I11, I22 = (float(v) for v in rng.uniform(0.2, 5, 2))
+            I13, I23 = (float(v) for v in rng.uniform(-2, 2, 2))
+            for branch in (1, -1):
+                w1, w2 = module.omega_general(np.array(HARD_T[1:-1]), I11, I22, I13, I23, branch)
+                r = math.sqrt(I11 * I22)
+                D = I13**2 * I22 + I23**2 * I11
+                bound = 1e-15 * (I11 * I22 * abs(I23) + I22 * abs(I13) * r + I11 * I22 * abs(I13) + I11 * abs(I23) * r) / D
+                for i, t in enumerate(HARD_T[1:-1]):
+                    e1, e2 = module.omega_general_mp(t, I11, I22, I13, I23, branch, dps=DPS)
+                    worst = max(worst, _ratio(abs(w1[i] - e1), bound), _ratio(abs(w2[i] - e2), bound))
+                    points += 1
+    return _record(log, "omega_general: float64 within the docstring's bound 1e-15 B of omega_general_mp",
+                   worst <= 1, elapsed[0], points, worst)
+
+
+def check_first_integral(log: CertificateLog, module, p: int) -> Certificate:
+    rng = np.random.default_rng(1300 + p)
+    worst, points = 0.0, 0
+    with stopwatch() as elapsed:
+        for d in (0.5, 1e-2, 50.0, float(10 ** rng.uniform(-1, 1))):
+            coefficients = module.first_integral_coefficients(p, d)
+            sizes = [sum(abs(float(a)) for a in coefficients[name]) for name in ("P1", "P2", "P3")]
+            for size in (1e-3, 1.0, 20.0):
+                w1, w2 = (float(v) for v in rng.uniform(-size, size, 2))
+                g = rng.normal(size=3)
+                g /= np.linalg.norm(g)
+                value = module.first_integral(p, d, w1, w2, *g)
+                exact = module.first_integral_mp(p, d, w1, w2, *(float(v) for v in g), dps=DPS)
+                s = max(abs(w1), abs(w2))
+                bound = 2e-15 * (p + 1) * s**p * sum(abs(gi) * si for gi, si in zip(g, sizes))
+                worst = max(worst, _ratio(abs(float(value) - exact), bound))
+                points += 1
+    return _record(log, f"p = {p}: first_integral float64 within 2e-15 (p+1) s^p sum |g_i| |P_i| of first_integral_mp",
+                   worst <= 1, elapsed[0], points, worst)
+
+
+def basis_bound(p: int, d: float, t) -> float:
+    """The error bound stated in gamma_basis's docstring."""
+    return 1e-15 * (p + 1) ** 1.5 + 4e-16 * abs(p * t / d) + 2e-16 * abs(t)
+
+
+def check_gamma_basis(log: CertificateLog, module, p: int, basis=None) -> list:
+    rng = np.random.default_rng(1400 + p)
+    worst, points, worst_det = 0.0, 0, 0.0
+    certs = []
+    with stopwatch() as elapsed:
+        for d in (0.5, float(10 ** rng.uniform(-1, 1)), 1e-3, 1e3):
+            ts = [0.0, -1e-8, 2.2, -30.0, float(rng.uniform(-8, 8)), 1e4 if d >= 0.5 else 50.0]
+            B = module.gamma_basis(np.array(ts), p, d)
+            for i, t in enumerate(ts):
+                M = module.gamma_basis_mp(t, p, d, dps=DPS)
+                error = max(abs(B[i][r][c] - float(M[r, c])) for r in range(3) for c in range(3))
+                worst = max(worst, _ratio(error, basis_bound(p, d, t)))
+                worst_det = max(worst_det, abs(np.linalg.det(B[i]) - 1.0))
+                points += 1
+    certs.append(_record(log, f"p = {p}: gamma_basis float64 within 1e-15 (p+1)^1.5 + 4e-16 |p t/d| + 2e-16 |t| of "
+                         "gamma_basis_mp, and det = +1 (a rotation) to 1e-12", worst <= 1 and worst_det <= 1e-12,
+                         elapsed[0], points, worst))
+    if basis is not None:
+        from .meromorphic import basis_mp
+
+        worst = 0.0
+        with stopwatch() as elapsed:
+            for t, d in ((mpmath.mpf("-1.3"), mpmath.mpf(3) / 7), (mpmath.mpf("0.05"), mpmath.mpf("2.5"))):
+                with mpmath.workdps(DPS + 10):
+                    exact = basis_mp(basis, t, d)
+                    twin = module.gamma_basis_mp(t, p, d, dps=DPS + 10)
+                    worst = max(worst, max(abs(exact[r][c] - twin[r, c]) for r in range(3) for c in range(3)))
+        certs.append(_record(log, f"p = {p}: gamma_basis_mp equals the certified numerators evaluated independently "
+                             "(SymPy lambdify, mpmath) to 1e-40", worst <= mpmath.mpf(10) ** -40, elapsed[0], 2,
+                             float(worst / mpmath.mpf(10) ** -40),
+                             "numeric evidence (not a certificate): mpmath at 50 digits, 2 points"))
+    return certs
+
+
+def check_scattering_angle(log: CertificateLog, module) -> Certificate:
+    rng = np.random.default_rng(1500)
+    ps = [1.0, 3.0, 2.0, 0.5, 2.5, 1 + 1e-13, 3 - 1e-13, 2 + 1e-13, 7.3, 5.6, 1.9, -2.7, -0.6]
+    ps += [float(v) for v in rng.uniform(-60, 60, 12)]
+    ds = list(HARD_D) + [float(v) for v in 10 ** rng.uniform(-3, 3, 4)]
+    worst, points = 0.0, 0
+    with stopwatch() as elapsed:
+        values = module.scattering_angle(np.array(ps)[:, None], np.array(ds)[None, :])
+        for i, p in enumerate(ps):
+            for j, d in enumerate(ds):
+                exact = module.scattering_angle_mp(p, d, dps=DPS)
+                worst = max(worst, _ratio(abs(values[i, j] - exact), 1e-13 * abs(exact)) if exact else 0.0)
+                points += 1
+    return _record(log, "scattering_angle: float64 within relative 1e-13 of scattering_angle_mp (p near integers, "
+                   "both branches of the reduction of pi p/2, d from 1e-3 to 1e3)", worst <= 1, elapsed[0], points,
+                   worst)
+
+
+def check_special_case_chain(log: CertificateLog, module) -> Certificate:
+    rng = np.random.default_rng(1600)
+    worst, points = 0.0, 0
+    with stopwatch() as elapsed:
+        for p, d in ((3.0, 0.5), (1.0, 2.0), (2.5, 0.7), (7.0, 0.1)):
+            for sign in (1, -1):
+                I22 = float(rng.uniform(0.5, 2))
+                I33 = I22 * (d / p) ** 2 + float(rng.uniform(0.5, 1.5))  # any I33 keeping the tensor positive definite
+                M = np.array([[I22 * (d * d + 1), 0, 0], [0, I22, sign * I22 * d / p], [0, sign * I22 * d / p, I33]])
+                theta = float(rng.uniform(0, 2 * np.pi))
+                turn = np.array([[math.cos(theta), -math.sin(theta), 0], [math.sin(theta), math.cos(theta), 0], [0, 0, 1]])
+                body = turn @ M @ turn.T
+                found = module.special_case_parameters(body)
+                frame = found.frame
+                N = frame.T @ (body / np.linalg.det(body) ** (1 / 3)) @ frame
+                ts = np.array([-3.0, -0.4, 0.0, 1.1, 6.0])
+                w = module.omega(ts, found.p, found.d)
+                v = module.omega_general(ts, N[0, 0], N[1, 1], N[0, 2], N[1, 2], 1)
+                worst = max(worst, float(np.max(np.abs(np.array(w) - np.array(v)))) / 1e-11,
+                            abs(found.p - p) / (1e-11 * p), abs(found.d - d) / (1e-11 * d), 0.0 if found.p > 0 else 2.0)
+                points += 1
+    return _record(log, "special_case_parameters chains into omega: p > 0, (p, d) recovered, and omega(t, p, d) equals "
+                   "the body's own general solution in the returned frame (to 1e-11)", worst <= 1, elapsed[0], points,
+                   worst, "numeric evidence (not a certificate): float64, seeded bodies in rotated frames")
+
+
+def check_meromorphy(log: CertificateLog, module) -> Certificate:
+    worst, points = 0.0, 0
+    with stopwatch() as elapsed:
+        bodies = ([[2.0, 0, 0], [0, 1.0, 0.5], [0, 0.5, 1.5]], [[2.0, 0, 0.4], [0, 1.0, 0], [0.4, 0, 1.5]],
+                  [[3.0, 0.2, 0.0], [0.2, 1.0, -0.7], [0.0, -0.7, 2.0]], [[1.5, 0, 0.3], [0, 1.2, 0], [0.3, 0, 2.0]])
+        for body in bodies:
+            result = module.meromorphy(body)
+            lam = module.kovalevskaya_exponents(body)[3] - 1
+            worst = max(worst, abs(complex(result.p_squared) - lam * lam) / (1e-12 * max(1.0, abs(lam * lam))))
+            points += 1
+    return _record(log, "meromorphy's p^2 equals Lambda^2 of kovalevskaya_exponents in the cases I13 = 0, I23 = 0 "
+                   "and neither", worst <= 1, elapsed[0], points, worst,
+                   "numeric evidence (not a certificate): float64, four bodies")
+
+
+def certify(log: CertificateLog, module, build) -> list:
+    """Every float-path check; one per function, and one per p for the per-p functions."""
+    certs = [check_omega(log, module), check_omega_general(log, module), check_scattering_angle(log, module),
+             check_special_case_chain(log, module), check_meromorphy(log, module)]
+    for p in module.INTEGRAL_PS:
+        certs.append(check_first_integral(log, module, p))
+    bases = build.results["meromorphic"].exports.get("bases", {})
+    for p in module.BASIS_PS:
+        certs += check_gamma_basis(log, module, p, bases.get(p) if p <= BASIS_MP_CHECK_MAX else None)
+    return certs

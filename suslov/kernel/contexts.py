@@ -1,0 +1,52 @@
+"""Number contexts: one emitted formula, evaluated in float64, in mpmath, or symbolically.
+
+The build prints each closed form once, as a function ``f(ctx, ...)`` that takes its
+elementary functions from ``ctx`` (the shape of mpmath's ``ctx_fp``/``ctx_mp``).  This
+module provides the two run-time contexts; the build's round-trip certificate passes a
+third, symbolic context (``derivations.roundtrip``) to the *same emitted function* and
+compares the result with the certified expression exactly.
+
+``FLOAT.sech`` is ``2 e^-|t| / (1 + e^-2|t|)``, which cannot overflow; ``MP`` uses
+mpmath at the caller's working precision.
+"""
+from __future__ import annotations
+
+import mpmath
+import numpy as np
+
+__all__ = ["FloatContext", "MpContext", "FLOAT", "MP"]
+
+
+class FloatContext:
+    """float64 building blocks on NumPy arrays (broadcasting)."""
+
+    @staticmethod
+    def tanh(t):
+        return np.tanh(t)
+
+    @staticmethod
+    def sech(t):
+        with np.errstate(under="ignore"):
+            e = np.exp(-np.abs(t))
+            return 2.0 * e / (1.0 + e * e)
+
+    @staticmethod
+    def sqrt(x):
+        return np.sqrt(x)
+
+    @staticmethod
+    def atan2(y, x):
+        return np.arctan2(y, x)
+
+
+class MpContext:
+    """mpmath building blocks (precision set by the caller's ``workdps``)."""
+
+    tanh = staticmethod(mpmath.tanh)
+    sech = staticmethod(mpmath.sech)
+    sqrt = staticmethod(mpmath.sqrt)
+    atan2 = staticmethod(mpmath.atan2)
+
+
+FLOAT = FloatContext()
+MP = MpContext()

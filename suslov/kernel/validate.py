@@ -1,0 +1,115 @@
+"""Argument validation for the public functions of the generated module.
+
+Every error is a ``ValueError`` whose message names the field, the offending value
+(and, for arrays, its index) and the reason, so a user can fix the call without reading
+the source.  Real parameters that a formula allows to vary broadcast like NumPy ufunc
+arguments; parameters that select a formula (the odd integer p of a basis) do not.
+"""
+from __future__ import annotations
+
+import math
+import numbers
+from fractions import Fraction
+
+import mpmath
+import numpy as np
+
+__all__ = ["real_scalar", "real_array", "odd_p", "mp_real", "rational"]
+
+
+def _where(array: np.ndarray, bad: np.ndarray) -> tuple:
+    return tuple(int(i) for i in np.argwhere(bad)[0]) if array.ndim else ()
+
+
+def real_array(name: str, value, *, positive: bool = False, nonzero: bool = False) -> np.ndarray:
+    """float64 array of finite reals (any shape); ``positive``/``nonzero`` add a sign condition.
+
+    >>> real_array("d", [0.5, 2.0], positive=True)
+    array([0.5, 2. ])
+    """
+    if isinstance(value, (str, bytes, bool, np.bool_)):
+        raise ValueError(f"{name}={value!r}: must be a real number or an array of real numbers")
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}={value!r}: must be a real number or an array of real numbers") from None
+    for bad, why in ((~np.isfinite(array), "must be finite"),
+                     ((array <= 0) if positive else None, "must be > 0"),
+                     ((array == 0) if nonzero else None, "must be non-zero")):
+        if bad is not None and bad.any():
+            index = _where(array, bad)
+            shown = array[index] if index else array.item() if array.ndim == 0 else array
+            raise ValueError(f"{name}{list(index) if index else ''}={shown!r}: {why}")
+    return array
+
+
+def real_scalar(name: str, value, *, positive: bool = False, nonzero: bool = False) -> float:
+    """One finite real as a Python float (rejects bool, strings, arrays)."""
+    if isinstance(value, bool) or not isinstance(value, (numbers.Real, mpmath.mpf)):
+        raise ValueError(f"{name}={value!r}: must be a real number")
+    return float(real_array(name, float(value), positive=positive, nonzero=nonzero))
+
+
+def mp_real(name: str, value, *, positive: bool = False, nonzero: bool = False):
+    """``mpmath.mpf`` at the current precision from an int, float, Fraction, mpf or decimal string.
+
+    >>> mp_real("d", "0.5")
+    mpf('0.5')
+    """
+    if isinstance(value, bool):
+        raise ValueError(f"{name}={value!r}: must be a real number")
+    try:
+        if isinstance(value, Fraction):
+            number = mpmath.mpf(value.numerator) / value.denominator
+        else:
+            number = mpmath.mpf(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}={value!r}: must be a real number (int, float, Fraction, mpf or a decimal "
+                         "string such as '0.5')") from None
+    if not mpmath.isfinite(number):
+        raise ValueError(f"{name}={value!r}: must be finite")
+    if positive and not number > 0:
+        raise ValueError(f"{name}={value!r}: must be > 0")
+    if nonzero and number == 0:
+        raise ValueError(f"{name}={value!r}: must be non-zero")
+    return number
+
+
+def rational(name: str, value, *, positive: bool = False) -> Fraction:
+    """An exact ``Fraction`` from an int, a Fraction, a float or mpf (its exact binary value), or 'a/b' / '0.5'."""
+    if isinstance(value, bool):
+        raise ValueError(f"{name}={value!r}: must be a rational number (int, Fraction, float or 'a/b')")
+    try:
+        if isinstance(value, mpmath.mpf):
+            if not mpmath.isfinite(value):
+                raise ValueError
+            mantissa, exponent = value.man_exp
+            number = Fraction(int(mantissa)) * Fraction(2) ** int(exponent)
+        else:
+            number = Fraction(value)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name}={value!r}: must be a rational number (int, Fraction, float or 'a/b')") from None
+    if positive and number <= 0:
+        raise ValueError(f"{name}={value!r}: must be > 0")
+    return number
+
+
+def odd_p(value, allowed, what: str) -> int:
+    """An odd positive integer in ``allowed`` (integral floats such as 3.0 are accepted).
+
+    ``what`` says which object needs odd p (it ends the message for even p).
+    """
+    if isinstance(value, bool):
+        raise ValueError(f"p={value!r}: must be an odd positive integer")
+    if isinstance(value, (numbers.Integral, np.integer)):
+        p = int(value)
+    elif isinstance(value, (numbers.Real, mpmath.mpf)) and math.isfinite(float(value)) and float(value).is_integer():
+        p = int(float(value))
+    else:
+        raise ValueError(f"p={value!r}: must be an odd positive integer ({what})")
+    if p < 1 or p % 2 == 0:
+        raise ValueError(f"p={p}: must be an odd positive integer ({what})")
+    if p not in allowed:
+        raise ValueError(f"p={p}: outside the certified range of this build (odd p <= {max(allowed)}); "
+                         "rebuild with build_formulas.py --pmax N")
+    return p

@@ -1,0 +1,116 @@
+"""Recipe: numerators of the orthonormal basis of Poisson solutions for odd p (sections 5.1, 6.1).
+
+Labels: ``pol_sol``, ``abc``, ``poly_F``, ``F_23_splitted``, ``F_23_pol``, ``gam1``,
+``gam2``, ``gam3`` (Theorem 6.1, corrected), ``eq:gam3``, ``asymp``.
+
+With ``x = e^t`` every solution is ``e^{i r t} N(x)/(1+x^2)^p`` with a polynomial
+numerator of degree <= 2p (r = 0 or r = p/d).  Components are kept in the *c-free*
+scaling ``(g1, c g2, c g3)``, ``c = sqrt(d^2+1)``, where the Poisson equations with
+``omega = ((p/d) tanh t, -(p/d) c sech t)`` have rational coefficients.
+
+* gamma^(1): ``g1 = tanh t F1(sech^2 t)``, numerator
+  ``N1 = (x^2 - 1) sum_j e_j d^(2j) Den1_j 4^j x^(2j) (1+x^2)^(p-1-2j)``
+  (``Den1_j = prod_{j<=m<J} ((2m+1)^2 d^2 + p^2)``: denominators of c_j cleared).
+* the complex solution: ``g1 = e^{+i(p/d)t} x P(x^2)/(1+x^2)^p``, ``P = F Fhat`` with
+  ``F = 2F1(a+, b; c+; -y)``, ``a+ = (2-p)/2 + ip/(2d)``, ``b = (1-p)/2``,
+  ``c+ = 3/2 + ip/(2d)`` and ``Fhat = [d(p-1)y - d - ip] F - 2d y(y+1) F'``, denominators
+  ``prod_j ((3+2j)^2 d^2 + p^2)`` cleared.
+* the other components from ``eq:gam3`` in exact form: ``g3~ = D g1 (1+x^2)/(2 a x)`` and
+  ``g2~ = (c w2 g1 - D g3~)/w1`` with ``D = x d/dx``; the divisions by ``x`` and by
+  ``x^2 - 1`` (zero at t = 0, the removable singularity of the printed ``eq:gam3``) are
+  exact polynomial divisions (the build certifies that they are).
+
+The result is ``(2p^2 N1, M2, p M3)`` over ``2p^2 (1+x^2)^p`` for each solution.  The
+build certifies, for every odd p in range, the Poisson equations, orthonormality and the
+limits of these numerators; the module normalises them by their own values at x = 0
+(certified to be the right normalisation) and evaluates them as trigonometric polynomials.
+
+Ring adapter: elements ``x``, ``d``, ``i``; ``dx(P)``; ``red(P)`` (normal form modulo
+i^2 + 1, the identity for numeric complex coefficients); ``divide_exact(P, Q) ->
+(quotient, exact)`` for Q monic in x; ``square_x(P)`` (x -> x^2); ``rational(n, q)``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from math import factorial
+
+from .integrals import e_coefficient
+
+__all__ = ["Solution", "DD", "gamma1_numerator", "hypergeometric_polynomials", "complete", "construct"]
+
+
+@dataclass
+class Solution:
+    """c-free numerators (M1, M2~, M3~) over 2p^2 (1+x^2)^p; rate r = 0 or p/d (1)."""
+
+    p: int
+    rate: int
+    M: list
+    divisions_exact: bool = True
+
+
+def DD(N, p: int, rate: int, ring, q: int | None = None):
+    """d * numerator of D(e^{i r t} N/(1+x^2)^q) over (1+x^2)^(q+1), r = rate p/d, q = p by default."""
+    q = p if q is None else q
+    X, D = ring.x, ring.d
+    base = D * (X * ring.dx(N) * (1 + X**2) - 2 * q * X**2 * N)
+    return ring.red(base + rate * ring.i * p * N * (1 + X**2)) if rate else base
+
+
+def gamma1_numerator(p: int, ring):
+    """(x^2-1) sum_j e_j d^(2j) Den1_j 4^j x^(2j) (1+x^2)^(p-1-2j)."""
+    X, D = ring.x, ring.d
+    J = (p - 1) // 2
+    total = 0 * X
+    for j in range(J + 1):
+        tail = 1
+        for m in range(j, J):
+            tail = tail * ((2 * m + 1) ** 2 * D**2 + p * p)
+        total = total + e_coefficient(j, p) * D ** (2 * j) * tail * 4**j * X ** (2 * j) * (1 + X**2) ** (p - 1 - 2 * j)
+    return (X**2 - 1) * total
+
+
+def _rising_over_factorial(b: Fraction, k: int) -> Fraction:
+    """(b)_k / k! with (b)_k = b (b+1) ... (b+k-1)."""
+    value = Fraction(1)
+    for j in range(k):
+        value *= b + j
+    return value / factorial(k)
+
+
+def hypergeometric_polynomials(p: int, ring):
+    """Den2 F(-y) and Den2 Fhat as polynomials in y (written in the variable x)."""
+    Y, D, I = ring.x, ring.d, ring.i
+    J = (p - 1) // 2
+    F = 0 * Y
+    for k in range(J + 1):
+        rising = _rising_over_factorial(Fraction(1 - p, 2), k)
+        coefficient = ring.rational(rising.numerator, rising.denominator)
+        for j in range(k):
+            coefficient = coefficient * (((2 - p + 2 * j) * D + I * p) * ((3 + 2 * j) * D - I * p))
+        for j in range(k, J):
+            coefficient = coefficient * ((3 + 2 * j) ** 2 * D**2 + p * p)
+        F = F + ring.red(coefficient * (-1) ** k * Y**k)
+    F = ring.red(F)
+    Fhat = ring.red((D * (p - 1) * Y - D - I * p) * F - 2 * D * Y * (Y + 1) * ring.dx(F))
+    return F, Fhat
+
+
+def complete(N1, p: int, rate: int, ring) -> Solution:
+    """Components 2, 3 from the first by eq:gam3 (exact divisions by x and x^2 - 1)."""
+    X, D = ring.x, ring.d
+    M3, exact3 = ring.divide_exact(DD(N1, p, rate, ring), X)
+    numerator2 = ring.red(-4 * p * p * (D**2 + 1) * X * N1 - DD(M3, p, rate, ring))
+    M2, exact2 = ring.divide_exact(numerator2, X**2 - 1)
+    return Solution(p, rate, [2 * p * p * N1, M2, p * M3], exact3 and exact2)
+
+
+def construct(p: int, ring) -> tuple[Solution, Solution]:
+    """(real solution gamma^(1), complex solution e^{i(p/d)t} V) for odd ``p``."""
+    if isinstance(p, bool) or not isinstance(p, int) or p < 1 or p % 2 == 0:
+        raise ValueError(f"p={p!r}: the meromorphic basis exists for odd positive integers p only")
+    real = complete(gamma1_numerator(p, ring), p, 0, ring)
+    F, Fhat = hypergeometric_polynomials(p, ring)
+    V1 = ring.red(ring.x * ring.square_x(ring.red(F * Fhat)))
+    return real, complete(V1, p, 1, ring)

@@ -1,0 +1,78 @@
+"""Run-time ring adapters for the recipes: numeric d, exact (Fraction) or mpmath coefficients.
+
+The build's adapters (python-flint, symbolic d) live in ``derivations/recipe_rings.py``;
+these are the ones the generated module uses.  Each adapter provides exactly the
+operations listed in the recipe's docstring.
+"""
+from __future__ import annotations
+
+import mpmath
+
+from suslov.kernel.sparse import Sparse
+
+__all__ = ["IntegralRing", "BasisRing", "homogeneous_coefficients"]
+
+
+class IntegralRing:
+    """Polynomials in (w1, w2) with coefficients in the number type of ``d`` (Fraction or mpf)."""
+
+    def __init__(self, d):
+        self.d = d
+        self.one = d ** 0
+        self.w1, self.w2 = Sparse.gens(2)
+
+    @staticmethod
+    def constant(n):
+        return Sparse(2, {(0, 0): n})
+
+    @staticmethod
+    def dw1(P):
+        return P.derivative(0)
+
+    @staticmethod
+    def dw2(P):
+        return P.derivative(1)
+
+    @staticmethod
+    def divide_w1(P):
+        quotient = Sparse(2, {(a - 1, b): c for (a, b), c in P.terms.items() if a >= 1})
+        return quotient, all(a >= 1 for a, _ in P.terms)
+
+
+def homogeneous_coefficients(P, degree: int) -> list:
+    """[a_0, ..., a_n]: P = sum a_k w1^(n-k) w2^k (P homogeneous of degree n)."""
+    out = [0] * (degree + 1)
+    for (a, b), c in P.terms.items():
+        if a + b != degree:
+            raise ValueError(f"not homogeneous of degree {degree}: monomial w1^{a} w2^{b}")
+        out[b] = c
+    return out
+
+
+class BasisRing:
+    """Polynomials in x with mpmath coefficients (complex) for a numeric d at the working precision."""
+
+    def __init__(self, d):
+        self.d = mpmath.mpf(d)
+        self.i = mpmath.mpc(0, 1)
+        (self.x,) = Sparse.gens(1)
+
+    @staticmethod
+    def red(P):
+        return P
+
+    @staticmethod
+    def dx(P):
+        return P.derivative(0)
+
+    @staticmethod
+    def divide_exact(P, Q):
+        return P.divide_exact(Q, 0)
+
+    @staticmethod
+    def square_x(P):
+        return P.square_variable(0)
+
+    @staticmethod
+    def rational(n: int, q: int):
+        return mpmath.mpf(n) / q
