@@ -70,16 +70,47 @@ class Emitted:
     outputs: tuple
     certificates: tuple = ()
     doc: str = ""
+    linear_in: tuple = ()
+
+    def _binding_lines(self, bindings) -> list[str]:
+        """``T, S = ctx.tanh_sech(t)`` where tanh and sech of one argument are bound together (one exp)."""
+        lines, pending = [], list(bindings)
+        while pending:
+            symbol, value = pending.pop(0)
+            partner = next((b for b in pending if isinstance(value, sp.tanh) and isinstance(b[1], sp.sech)
+                            and b[1].args == value.args), None)
+            if partner is not None:
+                pending.remove(partner)
+                lines.append(f"    {symbol}, {partner[0]} = ctx.tanh_sech({_source(value.args[0])})")
+            else:
+                lines.append(f"    {symbol} = {_source(value)}")
+        return lines
 
     def source(self) -> str:
+        """The function's text.  With ``linear_in`` (bound symbols such as T = tanh t, S = sech t) each
+        output is written as sum k_i m_i with the coefficients k_i (free of those symbols) computed first:
+        for scalar parameters and array t that costs one array product per term (an evaluation-order
+        rewrite, declared as data; the round trip checks the printed text against the certified expression)."""
         lines = [f"def _{self.name}(ctx, {', '.join(str(a) for a in self.args)}):"]
         lines.append(f'    """{self.doc}')
         lines.append("")
         lines.append(f'    Emitted from the certified expression; certificates: {", ".join(self.certificates) or "-"}.')
         lines.append('    """')
-        for symbol, value in self.bindings:
-            lines.append(f"    {symbol} = {_source(value)}")
-        outputs = [_source(e) for e in self.outputs]
+        late = [b for b in self.bindings if b[0] in self.linear_in]
+        lines += self._binding_lines([b for b in self.bindings if b[0] not in self.linear_in])
+        if self.linear_in:
+            outputs, count = [], 0
+            for expr in self.outputs:
+                terms = []
+                for monomial, coefficient in sp.Poly(sp.expand(expr), *self.linear_in).terms():
+                    lines.append(f"    k{count} = {_source(sp.factor(coefficient))}")
+                    factor = sp.Mul(*(s**e for s, e in zip(self.linear_in, monomial)))
+                    terms.append(f"k{count}" + ("" if factor == 1 else f"*{_source(factor)}"))
+                    count += 1
+                outputs.append(" + ".join(terms) or "0")
+        else:
+            outputs = [_source(e) for e in self.outputs]
+        lines += self._binding_lines(late)
         lines.append("    return " + (outputs[0] if len(outputs) == 1 else "(" + ", ".join(outputs) + ")"))
         return "\n".join(lines) + "\n"
 

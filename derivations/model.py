@@ -240,7 +240,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
 
     emit = [Emitted("omega_general", (t, I11, I22, I13, I23, r), ((T, sp.tanh(t)), (S, sp.sech(t))),
                     (solution[w1], solution[w2]), (c_sol.key,),
-                    "General solution of the reduced Euler equations (eq:o12 corrected), r = +-sqrt(I11 I22).")]
+                    "General solution of the reduced Euler equations (eq:o12 corrected), r = +-sqrt(I11 I22).", (T, S))]
     result.exports.update(field=field, poisson=poisson, solution=solution, coefficients=coeff, emit=emit,
                           energy=energy)
     return result

@@ -36,6 +36,7 @@ import sys
 from fractions import Fraction
 from pathlib import Path
 
+import mpmath
 import sympy as sp
 
 from .certificates import (
@@ -61,6 +62,10 @@ class SymbolicContext:
     sech = staticmethod(sp.sech)
     sqrt = staticmethod(sp.sqrt)
     atan2 = staticmethod(sp.atan2)
+
+    @staticmethod
+    def tanh_sech(t):
+        return sp.tanh(t), sp.sech(t)
 
 
 def load_module(directory: Path):
@@ -183,7 +188,8 @@ def certify_module(log: CertificateLog, build, directory: Path) -> list:
     from .pipeline import emitted_formulas
 
     module = load_module(directory)
-    with log.section(SECTION):
+    # the same working precision whatever the caller set: the evidence details are part of the byte-identical outputs
+    with log.section(SECTION), mpmath.workdps(15):
         certs = certify_emitted(log, module, emitted_formulas(build))
         certs += certify_integral_core(log, module, build.results["first_integrals"].exports["objects"])
         certs += certify_basis_core(log, module, build.results["meromorphic"].exports["objects"])

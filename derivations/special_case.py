@@ -234,7 +234,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     tanh_t, sech_t = sp.tanh(t), sp.sech(t)
     emit = [Emitted("omega", (t, p, d), ((T, tanh_t), (S, sech_t), (c, sp.sqrt(d**2 + 1))),
                     (solution[w1], solution[w2]), (c_sol.key, c_form.key),
-                    "omega(t) for I13 = 0 (omegas), branch c = +sqrt(d^2+1)."),
+                    "omega(t) for I13 = 0 (omegas), branch c = +sqrt(d^2+1).", (T, S)),
             Emitted("special_parameters", (I11, I22, I23), ((d, sp.sqrt(I11 / I22 - 1)),), (p_of_inertia, d),
                     (c_inverse.key,), "(p, d) of a body with I13 = 0 (eq:necc1, corrected).")]
     result.exports.update(solution=solution, field=sysfin, A0=A0, per_p=per_p, emit=emit,

@@ -24,7 +24,7 @@ float function agrees with its mpmath twin within the bound its docstring states
 ``python build_formulas.py --verify DIR`` repeats that check on any generated tree.
 The certificates are in ``certificates.json`` (:func:`load_certificates`).
 
-Importing this module needs NumPy and mpmath only (no SymPy).
+Importing this module needs NumPy, mpmath and python-flint (no SymPy).
 """
 from __future__ import annotations
 
@@ -34,17 +34,18 @@ from fractions import Fraction
 from pathlib import Path
 from typing import NamedTuple
 
+import flint  # noqa: F401  (python-flint ball arithmetic for the float coefficients, loaded once here)
 import mpmath
 import numpy as np
 from numpy.typing import ArrayLike
 
-from suslov.kernel import fourier, horner, phase
+from suslov.kernel import fourier, horner, phase, trig_series
 from suslov.kernel.contexts import FLOAT, MP
 from suslov.kernel.frames import canonical_frame, rotation_about_e3
 from suslov.kernel.validate import mp_real, odd_p, rational, real_array, real_scalar
 from suslov.recipes import basis as _basis_recipe
 from suslov.recipes import integrals as _integral_recipe
-from suslov.recipes.rings import BasisRing, IntegralRing, homogeneous_coefficients
+from suslov.recipes.rings import AcbBasisRing, BasisRing, IntegralRing, homogeneous_coefficients
 
 __all__ = ["PMAX", "INTEGRAL_PS", "BASIS_PS", "omega", "omega_mp", "omega_general", "omega_general_mp",
            "first_integral", "first_integral_mp", "first_integral_coefficients", "gamma_basis", "gamma_basis_mp",
@@ -69,10 +70,11 @@ def _omega(ctx, t, p, d):
 
     Emitted from the certified expression; certificates: special_case:038, special_case:041.
     """
-    T = ctx.tanh(t)
-    S = ctx.sech(t)
     c = ctx.sqrt((d*d) + 1)
-    return (T*p/d, -S*c*p/d)
+    k0 = p/d
+    k1 = -c*p/d
+    T, S = ctx.tanh_sech(t)
+    return (k0*T, k1*S)
 
 
 def _omega_general(ctx, t, I11, I22, I13, I23, r):
@@ -80,9 +82,12 @@ def _omega_general(ctx, t, I11, I22, I13, I23, r):
 
     Emitted from the certified expression; certificates: model:011.
     """
-    T = ctx.tanh(t)
-    S = ctx.sech(t)
-    return (I22*(-I11*I23*T + I13*S*r)/(I11*(I23*I23) + (I13*I13)*I22), I11*(I13*I22*T + I23*S*r)/(I11*(I23*I23) + (I13*I13)*I22))
+    k0 = -I11*I22*I23/(I11*(I23*I23) + (I13*I13)*I22)
+    k1 = I13*I22*r/(I11*(I23*I23) + (I13*I13)*I22)
+    k2 = I11*I13*I22/(I11*(I23*I23) + (I13*I13)*I22)
+    k3 = I11*I23*r/(I11*(I23*I23) + (I13*I13)*I22)
+    T, S = ctx.tanh_sech(t)
+    return (k0*T + k1*S, k2*T + k3*S)
 
 
 def _lambda_squared(ctx, I11, I22, I13, I23):
@@ -130,6 +135,12 @@ def _scattering_angle(ctx, x, s, c):
 # ---------------------------------------------------------------- angular velocity
 
 
+def _full(values, shape) -> np.ndarray:
+    """A writable float64 array of the broadcast shape (a fresh result is returned as it is)."""
+    values = np.asarray(values, dtype=float)
+    return values if values.shape == shape else np.array(np.broadcast_to(values, shape))
+
+
 def omega(t: ArrayLike, p: ArrayLike, d: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Angular velocity of the Suslov problem in the case I13 = 0 (paper: ``omegas``).
 
@@ -150,10 +161,11 @@ def omega(t: ArrayLike, p: ArrayLike, d: ArrayLike) -> tuple[np.ndarray, np.ndar
     >>> float(w1[0]), round(float(w1[1]), 12)   # (3/2) tanh 1
     (0.0, 1.142391233934)
     """
-    t, p, d = np.broadcast_arrays(real_array("t", t), real_array("p", p, nonzero=True),
-                                  real_array("d", d, positive=True))
+    t, p, d = real_array("t", t), real_array("p", p, nonzero=True), real_array("d", d, positive=True)
+    shape = np.broadcast_shapes(t.shape, p.shape, d.shape)
+    # scalar parameters stay scalars: the emitted k_i are computed once, one array product per term
     w1, w2 = _omega(FLOAT, t, p, d)
-    return np.asarray(w1, dtype=float), np.asarray(w2, dtype=float)
+    return _full(w1, shape), _full(w2, shape)
 
 
 def omega_mp(t, p, d, dps: int = 50) -> tuple:
@@ -213,10 +225,10 @@ def omega_general(t: ArrayLike, I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, 
     """
     t = real_array("t", t)
     I11, I22, I13, I23 = _tensor_arrays(I11, I22, I13, I23)
-    t, I11, I22, I13, I23 = np.broadcast_arrays(t, I11, I22, I13, I23)
+    shape = np.broadcast_shapes(t.shape, I11.shape, I22.shape, I13.shape, I23.shape)
     r = _branch(branch) * np.sqrt(I11 * I22)
     w1, w2 = _omega_general(FLOAT, t, I11, I22, I13, I23, r)
-    return np.asarray(w1, dtype=float), np.asarray(w2, dtype=float)
+    return _full(w1, shape), _full(w2, shape)
 
 
 def omega_general_mp(t, I11, I22, I13, I23, branch: int = 1, dps: int = 50) -> tuple:
@@ -272,11 +284,11 @@ _FLOAT_COEFFICIENTS: dict = {}
 
 
 def _float_coefficients(p: int, d: float) -> list:
-    """P1, P2, P3 coefficients correctly rounded to float64 (exact from the float d; cached)."""
+    """(3, p+1) coefficients of P1, P2, P3 correctly rounded to float64 (exact from the float d; cached)."""
     key = (p, d)
     if key not in _FLOAT_COEFFICIENTS:
         exact = _exact_coefficients(p, Fraction(d))
-        _FLOAT_COEFFICIENTS[key] = [np.array([float(v) for v in exact[name]]) for name in ("P1", "P2", "P3")]
+        _FLOAT_COEFFICIENTS[key] = np.array([[float(v) for v in exact[name]] for name in ("P1", "P2", "P3")])
     return _FLOAT_COEFFICIENTS[key]
 
 
@@ -294,7 +306,7 @@ def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, g
     ``d`` and the five state arguments broadcast; returns float64.  The coefficients are
     computed exactly from the float d and rounded once (cached per (p, d)); evaluated as
     s^p sum_i P_i(omega/s) gamma_i with s = max(|omega1|, |omega2|) and Horner's rule in
-    the ratio of modulus <= 1.  Error bound (evidence against :func:`first_integral_mp`):
+    the ratio of modulus <= 1 (``suslov.kernel.horner.combination``).  Error bound (evidence against :func:`first_integral_mp`):
     absolute 2e-15 (p+1) s^p sum_i |gamma_i| sum_k |a_ik|.  Raises ValueError for even,
     non-integer or uncertified p, d <= 0, non-finite input, and when s^p overflows float64
     (use :func:`first_integral_mp` then).
@@ -307,19 +319,23 @@ def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, g
     names = ("d", "omega1", "omega2", "gamma1", "gamma2", "gamma3")
     d, w1, w2, g1, g2, g3 = np.broadcast_arrays(
         *(real_array(n, v, positive=(n == "d")) for n, v in zip(names, (d, omega1, omega2, gamma1, gamma2, gamma3))))
-    s, u1, u2 = horner.scaled_unit(w1, w2)
+    shape = d.shape
+    d, w1, w2 = d.ravel(), w1.ravel(), w2.ravel()
+    g = np.stack([g1.ravel(), g2.ravel(), g3.ravel()])
+    s = np.maximum(np.abs(w1), np.abs(w2))
     with np.errstate(over="raise"):
         try:
-            scale = np.where(s > 0, s, 1.0) ** p
+            scale = s**p
         except FloatingPointError:
             raise ValueError(f"max(|omega1|, |omega2|)^p overflows float64 for p={p}: use first_integral_mp") from None
-    value = np.zeros(d.shape)
-    for dv in np.unique(d):
-        mask = d == dv
-        coefficients = _float_coefficients(p, float(dv))
-        value[mask] = sum(horner.horner_homogeneous(a, u1[mask], u2[mask]) * g[mask]
-                          for a, g in zip(coefficients, (g1, g2, g3)))
-    return np.where(s > 0, value * scale, 0.0)
+    if d.size == 0 or np.all(d == d[0]):
+        value = horner.combination(_float_coefficients(p, float(d[0])) if d.size else np.zeros((3, p + 1)), w1, w2, g)
+    else:
+        value = np.empty(d.shape)
+        for dv in np.unique(d):
+            mask = d == dv
+            value[mask] = horner.combination(_float_coefficients(p, float(dv)), w1[mask], w2[mask], g[:, mask])
+    return (value * scale).reshape(shape)
 
 
 def first_integral_mp(p: int, d, omega1, omega2, gamma1, gamma2, gamma3, dps: int = 50):
@@ -380,29 +396,48 @@ def _basis_series(p: int, d, dps: int):
 _SERIES_FLOAT: dict = {}
 
 
-def _series_float(p: int, d: float):
-    """float64 coefficients (shape (3, 3, 2, 2, p+1)), from two precisions that agree to 1e-17 (cancellation guard)."""
+def _series_float(p: int, d: float) -> np.ndarray:
+    """float64 coefficients (shape (2, 3, 2, 2, p+1): row, component, re/im, cos/sin, k), cached per (p, d).
+
+    The recipe and the Fourier products run in python-flint ball arithmetic from the exact
+    float d; the precision (64 + 12p bits to start, the alternating sums lose about 3p
+    digits) is doubled until every ball has radius <= 1e-17, so each float64 coefficient is
+    its ball's midpoint, within 1e-17 + half an ulp of the exact value (a rigorous bound).
+    """
     key = (p, d)
-    if key not in _SERIES_FLOAT:
-        dps = 40 + 3 * p
+    if key in _SERIES_FLOAT:
+        return _SERIES_FLOAT[key]
+    import flint
+
+    saved, bits = flint.ctx.prec, 64 + 12 * p
+    try:
         while True:
-            first, second = _basis_series(p, d, dps), _basis_series(p, d, dps + 40)
-            a = _as_array(first, p)
-            b = _as_array(second, p)
-            if np.max(np.abs(a - b)) <= 1e-17:
+            flint.ctx.prec = bits
+            ring = AcbBasisRing(d)
+            c = (ring.d**2 + 1).sqrt()
+            real, cplx = _basis_core(p, ring)
+            real_lists = [m.coeffs() for m in real.M]
+            complex_lists = [m.coeffs() for m in cplx.M]
+            s, k = -real_lists[0][0], complex_lists[1][0]
+            rows = [[v / (f * s) for v in comp] for comp, f in zip(real_lists, (1, c, c))]
+            rows += [[f * v / k for v in comp] for comp, f in zip(complex_lists, (c, 1, 1))]
+            alpha, beta = fourier.to_fourier_acb(rows, p)
+            out = np.zeros((2, 3, 2, 2, p + 1))
+            worst = 0.0
+            for index in range(6):
+                row, comp = divmod(index, 3)
+                for part, matrix in ((0, alpha), (1, beta)):
+                    for kk in range(p + 1):
+                        value = matrix[index, kk]
+                        out[row, comp, 0, part, kk] = float(value.real.mid())
+                        out[row, comp, 1, part, kk] = float(value.imag.mid())
+                        worst = max(worst, float(value.real.rad()), float(value.imag.rad()))
+            if worst <= 1e-17:
                 break
-            dps *= 2
-        _SERIES_FLOAT[key] = b
-    return _SERIES_FLOAT[key]
-
-
-def _as_array(rows, p: int) -> np.ndarray:
-    out = np.zeros((2, 3, 2, 2, p + 1))
-    for r, row in enumerate(rows):
-        for j, comp in enumerate(row):
-            for part_index, (alpha, beta) in enumerate(comp):
-                out[r, j, part_index, 0] = [float(v) for v in alpha]
-                out[r, j, part_index, 1] = [float(v) for v in beta]
+            bits *= 2
+    finally:
+        flint.ctx.prec = saved
+    _SERIES_FLOAT[key] = out
     return out
 
 
@@ -417,28 +452,34 @@ def _careful_phase(p: int, d: float, t: np.ndarray) -> tuple[np.ndarray, np.ndar
     return cos_out, sin_out
 
 
+_SERIES_MATRIX: dict = {}
+
+
+def _series_matrix(p: int, d: float) -> np.ndarray:
+    """(2(p+1), 9) coefficients for trig_series: gamma^(1) (3 columns), Re V (3), Im V (3)."""
+    key = (p, d)
+    if key not in _SERIES_MATRIX:
+        c = _series_float(p, d)
+        columns = [c[0, j, 0] for j in range(3)] + [c[1, j, 0] for j in range(3)] + [c[1, j, 1] for j in range(3)]
+        _SERIES_MATRIX[key] = np.ascontiguousarray(np.stack([np.concatenate(col) for col in columns], axis=1))
+    return _SERIES_MATRIX[key]
+
+
 def _gamma_basis_one_d(t: np.ndarray, p: int, d: float) -> np.ndarray:
-    coefficients = _series_float(p, d)
-    th = phase.theta(t)[..., None]
-    k = np.arange(p + 1)
-    cos_k, sin_k = np.cos(th * k), np.sin(th * k)
-
-    def series(row, comp, part):
-        return cos_k @ coefficients[row, comp, part, 0] + sin_k @ coefficients[row, comp, part, 1]
-
-    out = np.empty(t.shape + (3, 3))
-    for j in range(3):
-        out[..., 0, j] = series(0, j, 0)
+    t = np.ravel(t)
+    T, S = FLOAT.tanh_sech(t)
+    values = trig_series.evaluate(T, S, _series_matrix(p, d))  # rows: gamma^(1) (3), Re V (3), Im V (3)
     cphi, sphi = phase.phase_cos_sin(p, d, t)
-    far = np.abs(p * t / d) >= phase.PHASE_LIMIT
-    if np.any(far):
-        cphi, sphi = cphi.copy(), sphi.copy()
+    if t.size and np.max(np.abs(t)) * (p / d) >= phase.PHASE_LIMIT:
+        far = np.abs(p * t / d) >= phase.PHASE_LIMIT
         cphi[far], sphi[far] = _careful_phase(p, d, t[far])
-    sigma = _BASIS_SIGMA[p]
+    out = np.empty((t.size, 3, 3))
+    sign = -_BASIS_SIGMA[p]
     for j in range(3):
-        re, im = series(1, j, 0), series(1, j, 1)
-        out[..., 1, j] = cphi * re - sphi * im
-        out[..., 2, j] = -sigma * (sphi * re + cphi * im)
+        re, im = values[3 + j], values[6 + j]
+        out[:, 0, j] = values[j]
+        out[:, 1, j] = cphi * re - sphi * im
+        out[:, 2, j] = sign * (sphi * re + cphi * im)
     return out
 
 
@@ -471,6 +512,8 @@ def gamma_basis(t: ArrayLike, p: int, d: ArrayLike) -> np.ndarray:
     p = _basis_p(p)
     t, d = np.broadcast_arrays(real_array("t", t), real_array("d", d, positive=True))
     out = np.empty(t.shape + (3, 3))
+    if d.size == 1 or np.all(d == d.flat[0]):
+        return _gamma_basis_one_d(t, p, float(d.flat[0])).reshape(t.shape + (3, 3))
     for dv in np.unique(d):
         mask = d == dv
         out[mask] = _gamma_basis_one_d(t[mask], p, float(dv))

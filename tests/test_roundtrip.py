@@ -18,16 +18,15 @@ from derivations.roundtrip import load_module, verify
 
 MUTATIONS = [
     # (function named in the message, original text, mutated text)
-    ("_omega", "return (T*p/d, -S*c*p/d)", "return (T*p/d, S*c*p/d)"),
-    ("_omega_general", "I11*(I13*I22*T + I23*S*r)/(I11*(I23*I23) + (I13*I13)*I22))",
-     "I11*(I13*I22*T + I23*S*r)/(I11*(I23*I23) + (I13*I13*I13)*I22))"),
+    ("_omega", "k1 = -c*p/d", "k1 = c*p/d"),
+    ("_omega_general", "k3 = I11*I23*r/(I11*(I23*I23) + (I13*I13)*I22)", "k3 = I11*I23*r/(I11*(I23*I23) + (I13*I13*I13)*I22)"),
     ("_lambda_squared", "return (I11*I22*(I11 - I22)*", "return (I11*I22*(I11 + I22)*"),
     ("_p_squared_i23_zero", "return -I11*(I11 - I22)/(I13*I13)", "return I11*(I11 - I22)/(I13*I13)"),
     ("_special_parameters", "return (-I22*d/I23, d)", "return (-I22*d/I23, d*d)"),
     ("_scattering_angle", "c*ctx.sech(x))", "c*ctx.sech(2*x))"),
     ("first_integral", '"P2": core.K**2 * core.Den', '"P2": core.K * core.Den'),
     ("special_case_parameters", "if I23 > 0:", "if I23 < 0:"),
-    ("gamma_basis", "out[..., 2, j] = -sigma * (sphi * re + cphi * im)", "out[..., 2, j] = sigma * (sphi * re + cphi * im)"),
+    ("gamma_basis", "sign = -_BASIS_SIGMA[p]", "sign = _BASIS_SIGMA[p]"),
     ("meromorphy", 'case, p2 = "I23=0", float(_p_squared_i23_zero(FLOAT, I11, I22, I13))',
      'case, p2 = "I23=0", float(_p_squared_i13_zero(FLOAT, I11, I22, I13))'),
 ]

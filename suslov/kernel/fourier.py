@@ -19,25 +19,34 @@ from math import comb
 
 import mpmath
 
-__all__ = ["fourier_matrices", "to_fourier"]
+__all__ = ["fourier_matrices", "to_fourier", "to_fourier_acb"]
 
 
 @lru_cache(maxsize=None)
 def fourier_matrices(p: int) -> tuple[tuple[tuple[int, ...], ...], tuple[tuple[int, ...], ...]]:
-    """Integer (C, S): x^m/(1+x^2)^p = (sum_k C[m][k] cos k th + S[m][k] sin k th) / 4^p."""
+    """Integer (C, S): x^m/(1+x^2)^p = (sum_k C[m][k] cos k th + S[m][k] sin k th) / 4^p.
+
+    The sum over a + b = p - k is the coefficient of w^(p-k) in (1+w)^m (1-w)^n; those
+    polynomials are produced for m = 0..2p by P_(m+1) = P_m (1+w)/(1-w) (an exact division:
+    a running sum), O(p^2) integer operations in all.
+    """
     C = [[0] * (p + 1) for _ in range(2 * p + 1)]
     S = [[0] * (p + 1) for _ in range(2 * p + 1)]
+    P = [comb(2 * p, j) * (-1) ** j for j in range(2 * p + 1)]  # (1-w)^(2p): m = 0
     for m in range(2 * p + 1):
         n = 2 * p - m
         unit = (-1) ** (n // 2) if n % 2 == 0 else (-1) ** ((n + 1) // 2)  # (-i)^n = unit or unit * i
         for k in range(p + 1):
-            total = sum(comb(m, a) * comb(n, p - k - a) * (-1) ** (p - k - a)
-                        for a in range(max(0, p - k - n), min(m, p - k) + 1))
             weight = 1 if k == 0 else 2
             if n % 2 == 0:
-                C[m][k] = weight * unit * total
+                C[m][k] = weight * unit * P[p - k]
             else:  # F_k = i unit total: weight Re(F_k e^{ik th}) = -weight unit total sin k th
-                S[m][k] = -weight * unit * total
+                S[m][k] = -weight * unit * P[p - k]
+        times = [P[j] + (P[j - 1] if j else 0) for j in range(len(P))]  # (1+w) P, the top term dropped:
+        running, P = 0, []                                             # it cancels in the division
+        for value in times:
+            running += value
+            P.append(running)
     return tuple(map(tuple, C)), tuple(map(tuple, S))
 
 
@@ -49,3 +58,33 @@ def to_fourier(numerator, p: int):
     alpha = [mpmath.fsum(numerator[m] * C[m][k] for m in range(2 * p + 1)) / scale for k in range(p + 1)]
     beta = [mpmath.fsum(numerator[m] * S[m][k] for m in range(2 * p + 1)) / scale for k in range(p + 1)]
     return alpha, beta
+
+
+@lru_cache(maxsize=None)
+def _matrices_acb(p: int, prec: int):
+    import flint
+
+    C, S = fourier_matrices(p)
+    scale = 4**p
+    rows = 2 * p + 1
+    return (flint.acb_mat(rows, p + 1, [flint.acb(v) / scale for row in C for v in row]),
+            flint.acb_mat(rows, p + 1, [flint.acb(v) / scale for row in S for v in row]))
+
+
+def to_fourier_acb(numerators: list, p: int):
+    """(alpha, beta) as ``acb_mat`` (one row per numerator) of numerator(x)/(1+x^2)^p, k = 0..p.
+
+    ``numerators`` are lists of ``acb`` coefficients (low to high, at most 2p+1); the products
+    with the exact integer matrices are done in ball arithmetic at ``flint.ctx.prec``.
+    """
+    import flint
+
+    size = 2 * p + 1
+    # ball arithmetic cannot cancel a leading term exactly: beyond degree 2p (the certified bound) every
+    # coefficient must be a ball that contains 0, and is dropped
+    if any(0 not in v for n in numerators for v in list(n)[size:]):
+        raise ArithmeticError("to_fourier_acb: a numerator exceeds degree 2p (increase the precision)")
+    rows = [list(n)[:size] + [flint.acb(0)] * (size - len(n)) for n in numerators]
+    N = flint.acb_mat(len(rows), size, [v for row in rows for v in row])
+    C, S = _matrices_acb(p, flint.ctx.prec)
+    return N * C, N * S

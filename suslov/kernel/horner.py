@@ -36,3 +36,37 @@ def horner_homogeneous(a, u1, u2):
         h_first = h_first * r + a[k]
         h_second = h_second * r + a[n - k]
     return np.where(first, h_first * u1**n, h_second * u2**n)
+
+
+def combination(coefficients: np.ndarray, w1: np.ndarray, w2: np.ndarray, g: np.ndarray,
+                block: int = 8192) -> np.ndarray:
+    """sum_i g_i P_i(w1, w2) / s^n for homogeneous P_i of odd degree n, s = max(|w1|, |w2|).
+
+    ``coefficients`` is (m, n+1) (row i: a_ik of w1^(n-k) w2^k), ``g`` is (m, N), ``w1``, ``w2``
+    are (N,).  The combination c_k = sum_i a_ik g_i is formed first (one matrix product),
+    then one Horner pass in the ratio r of modulus <= 1: c_k r^k where |w1| >= |w2|, the
+    reversed c_(n-k) r^k elsewhere; the factor u_max^n = sign^n (u_max = +-1 exactly, n odd)
+    is a sign.  Points with w1 = w2 = 0 give 0.
+
+    >>> float(combination(np.array([[1.0, 0.0, 0.0, 2.0]]), np.array([1.0]), np.array([0.5]), np.array([[1.0]]))[0])
+    1.25
+    """
+    n = coefficients.shape[1] - 1
+    if n % 2 == 0:
+        raise ValueError("combination: the degree must be odd (the sign of u_max^n)")
+    N = w1.size
+    out = np.empty(N)
+    for start in range(0, N, block):
+        a, b = w1[start:start + block], w2[start:start + block]
+        first = np.abs(a) >= np.abs(b)
+        big = np.where(first, a, b)
+        safe = np.where(big == 0, 1.0, big)
+        r = np.where(first, b, a) / safe
+        c = coefficients.T @ g[:, start:start + block]  # (n+1, m)
+        c = np.where(first, c, c[::-1])
+        h = c[n].copy()
+        for k in range(n - 1, -1, -1):
+            h *= r
+            h += c[k]
+        out[start:start + block] = np.where(big == 0, 0.0, h * np.sign(big))
+    return out

@@ -2,7 +2,8 @@
 
 * :func:`theta`: th = 2 arctan(e^-t) in (0, pi), so that tanh t = cos th and
   sech t = sin th without overflow for any t.
-* :func:`phase_cos_sin`: cos and sin of (p/d) t in double-double arithmetic.  The plain
+* :func:`phase_cos_sin`: cos and sin of (p/d) t in double-double arithmetic (then one tangent of
+  the half angle gives both).  The plain
   product carries the rounding of p/d and of the product, an absolute phase error of
   about 1e-16 (p/d)|t|.  Here p/d = q + r/d with r = p - q d exact (Dekker's two-product),
   q t = h + l exactly, and the reduction modulo 2 pi subtracts k (C1 + C2 + C3) with
@@ -57,12 +58,56 @@ def phase_cos_sin(p, d, t):
     d = np.asarray(d, dtype=float)
     q = p / d
     qd_h, qd_l = two_prod(q, d)
-    r = (p - qd_h) - qd_l
+    rd = ((p - qd_h) - qd_l) / d
+    if q.ndim == 0 and d.ndim == 0:
+        return _phase_scalar_parameters(float(q), float(rd), t)
     h, low = two_prod(q, t)
-    low = low + (r / d) * t
+    low = low + rd * t
     k = np.round(h / _C1)
     reduced = ((h - k * _C1) - k * _C2) + (low - k * _C3)
-    return np.cos(reduced), np.sin(reduced)
+    return _cos_sin_reduced(reduced)
+
+
+def _cos_sin_reduced(angle: np.ndarray):
+    """cos and sin of an angle in [-pi, pi] from one tangent of the half angle, u = tan(angle/2):
+    cos = (1 - u^2)/(1 + u^2), sin = 2u/(1 + u^2), absolute error a few ulps (u is finite: pi/2 is
+    not a float); one transcendental call instead of two.  Overwrites ``angle``."""
+    angle *= 0.5
+    u = np.tan(angle, out=angle)
+    u2 = u * u
+    inverse = u2 + 1.0
+    np.reciprocal(inverse, out=inverse)
+    np.subtract(1.0, u2, out=u2)
+    u2 *= inverse
+    u *= 2.0
+    u *= inverse
+    return u2, u
+
+
+def _phase_scalar_parameters(q: float, rd: float, t: np.ndarray):
+    """phase_cos_sin for scalar p, d: q split once, in-place array operations (fewer passes)."""
+    tq = _SPLIT * q
+    q1 = tq - (tq - q)
+    q2 = q - q1
+    h = q * t
+    b1 = np.multiply(t, _SPLIT)
+    b1 -= np.subtract(b1, t)
+    b2 = np.subtract(t, b1)
+    low = np.multiply(b1, q1)
+    low -= h
+    low += q1 * b2
+    low += q2 * b1
+    b2 *= q2
+    low += b2
+    low += rd * t
+    k = np.multiply(h, 1.0 / _C1)
+    np.rint(k, out=k)
+    h -= k * _C1
+    h -= k * _C2
+    k *= _C3
+    low -= k
+    h += low
+    return _cos_sin_reduced(h)
 
 
 def half_pi_parts(p):

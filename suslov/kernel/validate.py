@@ -33,12 +33,14 @@ def real_array(name: str, value, *, positive: bool = False, nonzero: bool = Fals
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"{name}={value!r}: must be a real number or an array of real numbers") from None
+    if array.size > 64 and np.isfinite(np.add.reduce(array, axis=None)) and not (positive or nonzero):
+        return array  # one fast pass: a finite sum has no NaN or inf among its terms
     for bad, why in ((~np.isfinite(array), "must be finite"),
                      ((array <= 0) if positive else None, "must be > 0"),
                      ((array == 0) if nonzero else None, "must be non-zero")):
         if bad is not None and bad.any():
             index = _where(array, bad)
-            shown = array[index] if index else array.item() if array.ndim == 0 else array
+            shown = array[index].item() if index else array.item() if array.ndim == 0 else array
             raise ValueError(f"{name}{list(index) if index else ''}={shown!r}: {why}")
     return array
 

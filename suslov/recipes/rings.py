@@ -76,3 +76,39 @@ class BasisRing:
     @staticmethod
     def rational(n: int, q: int):
         return mpmath.mpf(n) / q
+
+
+class AcbBasisRing:
+    """Polynomials in x with python-flint ``acb`` ball coefficients (``acb_poly``) for a numeric d.
+
+    Every coefficient the recipe produces is a ball that contains the exact value for this d,
+    so the radius bounds the error rigorously: the module's float coefficients need no second
+    run at a higher precision.  Precision: ``flint.ctx.prec`` (set by the caller).
+    """
+
+    def __init__(self, d):
+        import flint
+
+        self._flint = flint
+        self.d = flint.arb(d)
+        self.i = flint.acb(0, 1)
+        self.x = flint.acb_poly([0, 1])
+
+    @staticmethod
+    def red(P):
+        return P
+
+    @staticmethod
+    def dx(P):
+        return P.derivative()
+
+    @staticmethod
+    def divide_exact(P, Q):
+        quotient, remainder = divmod(P, Q)
+        return quotient, all(0 in c for c in remainder.coeffs())
+
+    def square_x(self, P):
+        return P(self.x**2)
+
+    def rational(self, n: int, q: int):
+        return self._flint.arb(n) / q
