@@ -19,7 +19,9 @@ Method
 
       Y1' = a csch(tau) Y3,  Y2' = a coth(tau) Y3,  Y3' = a (d^2+1) csch(tau) Y1 - a coth(tau) Y2,
 
-  with the Laurent series of coth and csch (Bernoulli numbers), a = p/d.
+  with the Laurent series of coth and csch (Bernoulli numbers), a = p/d.  The series are an input the
+  derivation trusts no more than its output: ``certify_laurent_series`` checks them exactly against
+  tau csch(tau) sinh(tau)/tau = 1 and tau coth(tau) sinh(tau)/tau = cosh(tau) to the largest order used.
   ``A(tau) = sum_n A_n tau^(2n-1)``; the exponents are ``-p, 0, p``.  Starting
   from ``Y0 = alpha v_{-p}``, the recursion ``(mu - A_0) Y_k = sum_{n>=1} A_n
   Y_{k-2n}`` (``mu = k - p``) meets resonances at ``mu = 0`` (k = p) and
@@ -41,6 +43,7 @@ Method
 from __future__ import annotations
 
 from fractions import Fraction
+from math import factorial
 
 import sympy as sp
 
@@ -79,6 +82,33 @@ def laurent_coefficients(n: int):
     coth = [sp.Integer(2) ** (2 * k) * sp.bernoulli(2 * k) / sp.factorial(2 * k) for k in range(n + 1)]
     csch = [-2 * (sp.Integer(2) ** (2 * k - 1) - 1) * sp.bernoulli(2 * k) / sp.factorial(2 * k) for k in range(n + 1)]
     return coth, csch
+
+
+def certify_laurent_series(log: CertificateLog, coth: list, csch: list) -> Certificate:
+    """Certify the truncated Laurent series the Frobenius recursion and the gauge take as input.
+
+    With u = tau^2 and the coefficients c_k of tau^(2k-1) (k = 0..n), the identities
+    (tau csch tau)(sinh tau / tau) = 1 and (tau coth tau)(sinh tau / tau) = cosh tau, whose
+    Taylor series are exact rationals 1/(2j+1)! and 1/(2j)!, determine both series uniquely
+    (sinh tau / tau is a unit of Q[[u]]); they are checked coefficient by coefficient up to
+    u^n, exactly, in Q.  That covers every coefficient used (k <= n), independently of the
+    Bernoulli-number formula that produced them.
+    """
+    with stopwatch() as elapsed:
+        n = len(coth) - 1
+        sinh_over = [Fraction(1, factorial(2 * j + 1)) for j in range(n + 1)]
+        cosh = [Fraction(1, factorial(2 * j)) for j in range(n + 1)]
+
+        def product(series):
+            values = [Fraction(int(sp.numer(v)), int(sp.denom(v))) for v in series]
+            return [sum(values[i] * sinh_over[m - i] for i in range(m + 1)) for m in range(n + 1)]
+
+        ok = product(csch) == [Fraction(int(m == 0)) for m in range(n + 1)] and product(coth) == cosh
+    return log.record(Certificate(
+        f"Laurent series at tau = 0 used by the Frobenius recursion and the gauge: tau csch(tau) sinh(tau)/tau = 1 "
+        f"and tau coth(tau) sinh(tau)/tau = cosh(tau) to order tau^{2 * n}", "Theorem 3.5",
+        "exact truncated power-series identity over Q (Fractions)", Outcome.PASS if ok else Outcome.FAIL,
+        elapsed[0], 2 * (n + 1), f"{n + 1} coefficients of each series"))
 
 
 FIELD = sp.QQ.frac_field(d)
@@ -217,6 +247,8 @@ def check_body(I: dict, p_value: int) -> tuple[bool, str]:
 
 def run(log: CertificateLog, options, model_result, kova_result, special_result) -> DerivationResult:
     result = DerivationResult(NAME)
+    # the largest truncation any p <= pmax uses (laurent_coefficients(p + 1)): lower orders are prefixes
+    certify_laurent_series(log, *laurent_coefficients(options.pmax + 1))
 
     # general residue matrix at both poles
     omega1 = a_ * T + c1_ / 2 * S
