@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 import tempfile
 from pathlib import Path
@@ -41,6 +42,11 @@ def _pmax(text: str) -> int:
     return value
 
 
+def plain_title(title: str) -> str:
+    """A derivation's TeX title as terminal text: "$I_{13}=0$" -> "I13=0", "$\\omega(t)$" -> "omega(t)"."""
+    return re.sub(r"[${}_]", "", title).replace("\\", "")
+
+
 class _OneLineErrors(argparse.ArgumentParser):
     """Bad input gets one clear line (which option, which value, why), exit status 2."""
 
@@ -52,7 +58,7 @@ def parser() -> argparse.ArgumentParser:
     ap = _OneLineErrors(
         prog="build_formulas.py",
         description="Derive, certify and render the formulas of the Suslov problem.",
-        epilog="Derivations: " + ", ".join(f"{n} ({m.TITLE})" for n, m in DERIVATIONS.items()),
+        epilog="Derivations: " + ", ".join(f"{n} ({plain_title(m.TITLE)})" for n, m in DERIVATIONS.items()),
     )
     ap.add_argument("--pmax", type=_pmax, default=BuildOptions().pmax,
                     help=f"largest p for the per-p tables, 1..{PMAX_LIMIT} (default %(default)s); tables "
@@ -67,7 +73,7 @@ def parser() -> argparse.ArgumentParser:
                     help="certify the generated module in DIR (the committed generated/ or a copy) against the "
                          "derivations without rewriting anything: exit 0, or 1 naming the first discrepancy; "
                          "pmax is read from DIR/certificates.json")
-    ap.add_argument("--quiet", action="store_true", help="no progress display")
+    ap.add_argument("--quiet", action="store_true", help="no progress display and no certificate summary")
     return ap
 
 
@@ -128,7 +134,7 @@ def main(argv: list[str] | None = None) -> int:
             fresh = Path(tmp) / "generated"
             if not _write(build, fresh):
                 return 1
-            print(summary(build))
+            _summary(build, args.quiet)
             differing = compare_trees(fresh, reference)
         if differing:
             print(f"build_formulas.py: --check: {reference} differs from a fresh build in: "
@@ -137,14 +143,19 @@ def main(argv: list[str] | None = None) -> int:
         print(f"--check: {reference} is identical to a fresh build")
         return 0
     if target is None:
-        print(summary(build))
+        _summary(build, args.quiet)
         print("(--only without --out: certified, nothing written)")
         return 0
     if not _write(build, target):
         return 1
-    print(summary(build))
+    _summary(build, args.quiet)
     print(f"wrote {target}")
     return 0
+
+
+def _summary(build, quiet: bool) -> None:
+    if not quiet:
+        print(summary(build))
 
 
 def _write(build, target: Path) -> bool:

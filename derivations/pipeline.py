@@ -236,11 +236,12 @@ def compare_trees(expected: Path, actual: Path) -> list[str]:
 def summary(build: Build, top: int = 5) -> str:
     """Certificate summary with costs, for the console."""
     certs = build.log.certificates
-    lines = [f"{len(certs)} certificates: " + ", ".join(
-        f"{sum(1 for c in certs if c.outcome is o)} {o.value}" for o in Outcome)]
-    refuted = [c for c in certs if c.expected is Outcome.FAIL]
-    if refuted:
-        lines.append(f"{len(refuted)} printed forms refuted as predicted (see the errata table)")
+    refuted = [c for c in certs if c.expected is Outcome.FAIL and c.outcome is Outcome.FAIL]
+    passed = sum(1 for c in certs if c.outcome is Outcome.PASS)
+    unknown = sum(1 for c in certs if c.outcome is Outcome.UNKNOWN)
+    lines = [f"{len(certs)} certificates, all as expected: {passed} claims proved (or corroborated, where the method "
+             f"says evidence), {len(refuted)} printed forms of the paper refuted as the derivation predicts (see the "
+             f"errata table), {unknown} unknown"]
     for name in build.names:
         n = sum(1 for c in certs if c.derivation == name)
         lines.append(f"  {name:<16} {n:4d} certificates  {build.seconds[name]:8.3f} s")
