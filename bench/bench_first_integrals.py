@@ -35,6 +35,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from bench.machine_info import cpu_name  # noqa: E402
+from bench.timing import median_seconds  # noqa: E402
 from derivations import first_integrals as fi  # noqa: E402
 from derivations.certificates import CertificateLog  # noqa: E402
 from derivations.symbols import d, g1, g2, g3, p, w1, w2  # noqa: E402
@@ -46,16 +47,6 @@ def machine() -> str:
     cpu = cpu_name()
     return (f"{cpu}; {platform.machine()}; Python {platform.python_version()}; python-flint {flint.__version__}; "
             f"SymPy {sp.__version__}")
-
-
-def timed(fn, repeat: int) -> float:
-    fn()  # warm-up
-    samples = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        fn()
-        samples.append(time.perf_counter() - start)
-    return statistics.median(samples)
 
 
 def flint_route(p_value: int):
@@ -105,15 +96,15 @@ def main(argv=None) -> int:
     rows = {}
     sweep_total = 0.0
     for p_value in range(1, args.pmax + 1, 2):
-        seconds = timed(lambda: flint_route(p_value), args.repeat)
+        seconds = median_seconds(lambda: flint_route(p_value), args.repeat)
         sweep_total += seconds
         rows.setdefault(p_value, {})["flint"] = seconds
         print(f"flint     p = {p_value:4d}: {seconds:.4f} s", file=sys.stderr)
-    big = timed(lambda: flint_route(args.big), 1)
+    big = median_seconds(lambda: flint_route(args.big), 1)
     rows.setdefault(args.big, {})["flint"] = big
     print(f"flint     p = {args.big:4d}: {big:.4f} s", file=sys.stderr)
     for p_value in range(1, args.field_pmax + 1, 2):
-        rows[p_value]["QQ(d)"] = timed(lambda: field_route(p_value), 1)
+        rows[p_value]["QQ(d)"] = median_seconds(lambda: field_route(p_value), 1)
         print(f"QQ(d)     p = {p_value:4d}: {rows[p_value]['QQ(d)']:.4f} s", file=sys.stderr)
     for p_value in range(1, args.simplify_pmax + 1, 2):
         start = time.perf_counter()

@@ -33,6 +33,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from bench.machine_info import cpu_name  # noqa: E402
+from bench.timing import median_seconds  # noqa: E402
 
 OLD_REVISION = "082128f"  # generated/ before the round trip (the hand-written template)
 TARGETS_NS = {"omega": 20.0, "gamma_basis": 150.0, "first_integral": 100.0}
@@ -54,16 +55,6 @@ def load_module(path: Path, name: str):
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
-
-
-def median_seconds(function, repeat: int) -> float:
-    function()
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
 
 
 def per_point(module, n: int, repeat: int) -> dict:
