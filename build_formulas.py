@@ -8,6 +8,7 @@ Usage examples::
     python build_formulas.py --check         # rebuild elsewhere, fail if generated/ differs
     python build_formulas.py --only model    # certify one derivation (generated/ untouched)
     python build_formulas.py --verify generated   # certify an existing tree's module, rewrite nothing
+    python build_formulas.py --pdf           # build, then pdflatex into build/pdf/ (generated/ untouched)
 
 Every build certifies the generated module as emitted (``derivations/roundtrip.py``):
 it is imported from the staging directory and checked against the certified objects
@@ -28,7 +29,8 @@ from pathlib import Path
 
 from derivations.certificates import CertificationFailure
 from derivations.options import PMAX_LIMIT, BuildOptions
-from derivations.pipeline import GENERATED, Progress, compare_trees, derive, summary, write_atomically
+from derivations.pdf import PdfError, compile_pdfs
+from derivations.pipeline import GENERATED, ROOT, Progress, compare_trees, derive, summary, write_atomically
 from derivations.registry import DERIVATIONS
 
 
@@ -73,6 +75,9 @@ def parser() -> argparse.ArgumentParser:
                     help="certify the generated module in DIR (the committed generated/ or a copy) against the "
                          "derivations without rewriting anything: exit 0, or 1 naming the first discrepancy; "
                          "pmax is read from DIR/certificates.json")
+    ap.add_argument("--pdf", nargs="?", type=Path, const=ROOT / "build" / "pdf", default=None, metavar="OUTDIR",
+                    help="after writing, compile the LaTeX document with pdflatex (two passes) into OUTDIR "
+                         "(default build/pdf/, outside the tracked tree); generated/ gets no by-products")
     ap.add_argument("--quiet", action="store_true", help="no progress display and no certificate summary")
     return ap
 
@@ -114,8 +119,10 @@ def main(argv: list[str] | None = None) -> int:
         ap.error(f"--only {unknown[0]!r}: unknown derivation (known: {', '.join(DERIVATIONS)})")
     if args.check and args.only:
         ap.error("--check compares a full build; it cannot be combined with --only")
+    if args.pdf is not None and (args.check or (args.only and args.out is None)):
+        ap.error("--pdf compiles the tree a build writes; it cannot be combined with --check or --only without --out")
     if args.verify is not None:
-        if args.only or args.check or args.out:
+        if args.only or args.check or args.out or args.pdf:
             ap.error("--verify DIR checks an existing tree; it cannot be combined with --only, --check or --out")
         explicit = any(a == "--pmax" or a.startswith("--pmax=") for a in (argv if argv is not None else sys.argv[1:]))
         return verify_tree(args.verify, args.pmax if explicit else None, args.quiet)
@@ -150,6 +157,13 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     _summary(build, args.quiet)
     print(f"wrote {target}")
+    if args.pdf is not None:
+        try:
+            for pdf in compile_pdfs(target, args.pdf):
+                print(f"wrote {pdf}")
+        except PdfError as error:
+            print(f"build_formulas.py: --pdf: {error}", file=sys.stderr)
+            return 1
     return 0
 
 

@@ -29,6 +29,7 @@ from pathlib import Path
 
 from .certificates import CertificateLog, Outcome
 from .options import BuildOptions
+from .pdf import is_byproduct
 from .registry import DERIVATIONS, resolve
 from .render import render
 
@@ -204,6 +205,10 @@ def write_atomically(build: Build, target: Path) -> None:
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
+    if target.is_dir():  # a user's PDF (and the other TeX by-products) survives the rebuild
+        for item in target.iterdir():
+            if item.is_file() and is_byproduct(item.name) and not (staging / item.name).exists():
+                shutil.copy2(item, staging / item.name)
     backup = None
     if target.exists():
         backup = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
@@ -220,12 +225,12 @@ def write_atomically(build: Build, target: Path) -> None:
 
 
 def compare_trees(expected: Path, actual: Path) -> list[str]:
-    """Files that differ, are missing or are extra (volatile files ignored)."""
+    """Files that differ, are missing or are extra (volatile files and TeX by-products ignored)."""
     def files(root: Path) -> set[str]:
         if not root.exists():
             return set()
         return {str(p.relative_to(root)) for p in root.rglob("*")
-                if p.is_file() and p.name not in VOLATILE and "__pycache__" not in p.parts}
+                if p.is_file() and p.name not in VOLATILE and "__pycache__" not in p.parts and not is_byproduct(p.name)}
 
     left, right = files(expected), files(actual)
     differing = sorted(left ^ right)
