@@ -9,6 +9,7 @@ Usage examples::
     python build_formulas.py --only model    # certify one derivation (generated/ untouched)
     python build_formulas.py --verify generated   # certify an existing tree's module, rewrite nothing
     python build_formulas.py --pdf           # build, then pdflatex into build/pdf/ (generated/ untouched)
+    python build_formulas.py --diff HEAD~3   # what changed since a revision (or a directory), latexdiff PDF
 
 Every build certifies the generated module as emitted (``derivations/roundtrip.py``):
 it is imported from the staging directory and checked against the certified objects
@@ -29,7 +30,7 @@ from pathlib import Path
 
 from derivations.certificates import CertificationFailure
 from derivations.options import PMAX_LIMIT, BuildOptions
-from derivations.pdf import PdfError, compile_pdfs
+from derivations.pdf import PdfError, compile_pdfs, document_report
 from derivations.pipeline import GENERATED, ROOT, Progress, compare_trees, derive, summary, write_atomically
 from derivations.registry import DERIVATIONS
 
@@ -76,8 +77,12 @@ def parser() -> argparse.ArgumentParser:
                          "derivations without rewriting anything: exit 0, or 1 naming the first discrepancy; "
                          "pmax is read from DIR/certificates.json")
     ap.add_argument("--pdf", nargs="?", type=Path, const=ROOT / "build" / "pdf", default=None, metavar="OUTDIR",
-                    help="after writing, compile the LaTeX document with pdflatex (two passes) into OUTDIR "
+                    help="after writing, compile the LaTeX documents (formulas, certificates) with pdflatex (two passes) into OUTDIR "
                          "(default build/pdf/, outside the tracked tree); generated/ gets no by-products")
+    ap.add_argument("--diff", metavar="OLD", default=None,
+                    help="compare OLD (a git revision or a generated directory) with generated/ (or --out DIR), "
+                         "without rebuilding: list the formulas, tables, certificates and errata that changed and "
+                         "write a latexdiff PDF of the formulas document into build/diff/ (needs latexdiff)")
     ap.add_argument("--quiet", action="store_true", help="no progress display and no certificate summary")
     return ap
 
@@ -111,6 +116,22 @@ def verify_tree(directory: Path, pmax: int | None, quiet: bool) -> int:
     return 0
 
 
+def diff_command(old: str, new: Path) -> int:
+    """--diff OLD: the change list, then the latexdiff PDF (exit 1 with the reason if it cannot be made)."""
+    from derivations.diff import DiffError, diff_trees
+
+    if not (new / "suslov_formulas.tex").is_file():
+        print(f"build_formulas.py: --diff: {new} has no suslov_formulas.tex (build first)", file=sys.stderr)
+        return 2
+    try:
+        pdf = diff_trees(old, new, ROOT, ROOT / "build" / "diff")
+    except DiffError as error:
+        print(f"build_formulas.py: --diff: {error}", file=sys.stderr)
+        return 2 if "neither a directory" in str(error) or "directory without" in str(error) else 1
+    print(f"wrote {pdf} (latexdiff of suslov_formulas.tex: deletions struck out, additions underlined)")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = parser()
     args = ap.parse_args(argv)
@@ -121,6 +142,11 @@ def main(argv: list[str] | None = None) -> int:
         ap.error("--check compares a full build; it cannot be combined with --only")
     if args.pdf is not None and (args.check or (args.only and args.out is None)):
         ap.error("--pdf compiles the tree a build writes; it cannot be combined with --check or --only without --out")
+    if args.diff is not None:
+        if args.only or args.check or args.verify or args.pdf:
+            ap.error("--diff OLD compares two existing trees; it cannot be combined with --only, --check, --verify "
+                     "or --pdf")
+        return diff_command(args.diff, args.out if args.out is not None else GENERATED)
     if args.verify is not None:
         if args.only or args.check or args.out or args.pdf:
             ap.error("--verify DIR checks an existing tree; it cannot be combined with --only, --check or --out")
@@ -160,7 +186,9 @@ def main(argv: list[str] | None = None) -> int:
     if args.pdf is not None:
         try:
             for pdf in compile_pdfs(target, args.pdf):
-                print(f"wrote {pdf}")
+                pages, problems = document_report(pdf)
+                print(f"wrote {pdf} ({pages} pages; " + (f"{len(problems)} layout problems: " + "; ".join(problems[:5])
+                                                          if problems else "no layout problems") + ")")
         except PdfError as error:
             print(f"build_formulas.py: --pdf: {error}", file=sys.stderr)
             return 1

@@ -23,7 +23,6 @@ import sympy as sp
 
 from .exact import Domain, Extension
 
-
 T, S = sp.symbols("T S")
 t = sp.Symbol("t", real=True)
 

@@ -55,9 +55,11 @@ from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
 from .errata import erratum
 from .exact import Domain, certify_polys_zero, certify_zero
-from .recipe_rings import INTEGRAL_CTX as CTX, INTEGRAL_RING
+from .recipe_rings import INTEGRAL_CTX as CTX
+from .recipe_rings import INTEGRAL_RING
 from .result import DerivationResult
 from .symbols import d, g1, g2, g3, p, w1, w2
+from .typeset import latex
 
 NAME = "first_integrals"
 TITLE = "Polynomial first integrals $P_1,P_2,P_3$ for odd $p$ (section 6.2)"
@@ -220,7 +222,7 @@ def _latex_lines(name: str, P: sp.Expr) -> str:
     poly = sp.Poly(P, w1, w2)
     lines = []
     for (a, b), coefficient in poly.terms():
-        term = sp.latex(sp.factor(coefficient)) if (a, b) == (0, 0) else sp.latex(sp.factor(coefficient) * w1**a * w2**b)
+        term = latex(sp.factor(coefficient)) if (a, b) == (0, 0) else latex(sp.factor(coefficient) * w1**a * w2**b)
         lines.append(term if not lines or term.startswith("-") else "+" + term)
     return f"{name}={{}}&" + r"\\&".join(lines)
 

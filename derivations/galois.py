@@ -34,7 +34,6 @@ from __future__ import annotations
 import itertools
 
 import flint
-
 import sympy as sp
 
 from . import paper
@@ -43,6 +42,7 @@ from .errata import erratum
 from .exact import Domain, Extension, certify_zero
 from .result import DerivationResult
 from .symbols import g1, g2, g3, p, w1, w2
+from .typeset import latex
 
 NAME = "galois"
 TITLE = "Differential Galois analysis and logarithms at the singular points (section 5.2)"
@@ -248,7 +248,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                                  "exact polynomial identity in Q(i)[z, c, p]", Outcome.PASS if same_r else Outcome.FAIL,
                                  elapsed[0], len(N.terms())))
     result.formula("rlin", "eq:2rzedu, eq:rlin", "Reduced form $y''=r(z)y$",
-                   r"p(z)=" + sp.latex(sp.factor(pz)) + r",\quad q(z)=" + sp.latex(qz) + r",\quad r=\frac PQ", c_pq, c_r)
+                   r"p(z)=" + latex(sp.factor(pz)) + r",\quad q(z)=" + latex(qz) + r",\quad r=\frac PQ", c_pq, c_r)
     for item, cert in ((paper.RZEDU, c_pq), (paper.RLIN, c_r), (paper.RIG, c_ric)):
         result.errata.append(erratum(item, "confirmed", item.latex, "certified exactly", cert))
 

@@ -37,11 +37,12 @@ import sympy as sp
 
 from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
+from .emit import Emitted
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero, normal_form
-from .emit import Emitted
 from .result import DerivationResult
 from .symbols import I11, I13, I22, I23, g1, g2, g3, r, w1, w2
+from .typeset import latex
 
 NAME = "kovalevskaya"
 TITLE = "Kovalevskaya exponents and the necessary conditions (section 3.1)"
@@ -107,8 +108,8 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                                  [point[x] + I11 * I22 * printed_point[x] for x in (w1, w2)], DOMAIN)
     result.formula("darboux", "eq:d", "Darboux point ($m_3=I_{13}\\bar\\omega_1+I_{23}\\bar\\omega_2=ir$, "
                    "$r=\\sqrt{I_{11}I_{22}}$)",
-                   r"\bar\omega_1=" + sp.latex(sp.factor(point[w1])) + r",\quad\bar\omega_2="
-                   + sp.latex(sp.factor(point[w2])) + r",\quad\bar\gamma=0", c_point, c_point_scale)
+                   r"\bar\omega_1=" + latex(sp.factor(point[w1])) + r",\quad\bar\omega_2="
+                   + latex(sp.factor(point[w2])) + r",\quad\bar\gamma=0", c_point, c_point_scale)
     result.errata.append(erratum(paper.EQ_D, "corrected",
                                  r"\bar\omega=-I_{11}I_{22}\times\text{printed}",
                                  "the printed point belongs to the printed gen12 (time scale -I11 I22)",

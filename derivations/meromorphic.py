@@ -52,8 +52,10 @@ from suslov.recipes.integrals import e_coefficient
 from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
 from .errata import erratum
-from .recipe_rings import BASIS_CTX as CTX, BASIS_RING
+from .recipe_rings import BASIS_CTX as CTX
+from .recipe_rings import BASIS_RING
 from .result import DerivationResult
+from .typeset import latex
 
 NAME = "meromorphic"
 TITLE = "Meromorphic solutions for odd $p$ and the orthonormal basis (sections 5.1, 6.1)"
@@ -359,12 +361,12 @@ def compare_printed_examples(log: CertificateLog, result: DerivationResult, base
             paper.printed_example(p, mpmath.mpf("0.31"), d0)).T
         handed = "right-handed (det +1), like ours" if mpmath.det(R) > 0 else "left-handed (det -1); ours is right-handed"
         result.errata.append(erratum(
-            printed, "confirmed", r"	ext{our basis }=R\cdot	ext{printed},\ R	ext{ constant orthogonal}",
+            printed, "confirmed", r"\text{our basis }=R\cdot\text{printed},\ R\text{ constant orthogonal}",
             f"the printed rows solve eq:ps and are orthonormal; gamma^(1) coincides with ours, gamma^(2), gamma^(3) "
             f"differ by a constant rotation in their plane; the printed basis is {handed}", c_sol, c_rel))
 
 
-TANH, SECH = sp.Symbol(r"\tanh t"), sp.Symbol(r"\operatorname{sech} t")
+TANH, SECH = sp.tanh(sp.Symbol("t")), sp.sech(sp.Symbol("t"))
 
 
 def numerator_to_tanh_sech(expr, p: int):
@@ -390,7 +392,7 @@ def real_imaginary(poly):
     return A, B
 
 
-def written_out(basis: Basis) -> list[str]:
+def written_out(basis: Basis) -> list:
     """LaTeX of the rows: gamma^(1), and gamma^(2) + i gamma^(3) = e^{ipt/d} (R + i Q)."""
     cs = sp.Symbol("c")
     p = basis.p
@@ -403,11 +405,11 @@ def written_out(basis: Basis) -> list[str]:
         A, B = (to_sympy(v) for v in real_imaginary(m))
         R.append(numerator_to_tanh_sech(sp.expand((A * kr + B * ki) * f) / norm, p))
         Q.append(numerator_to_tanh_sech(sp.expand((B * kr - A * ki) * f) / norm, p))
-    vec = lambda v: r"\Big(" + r",\ ".join(sp.latex(x) for x in v) + r"\Big)"  # noqa: E731
     phase = r"\tfrac{%d t}{d}" % p if p > 1 else r"\tfrac{t}{d}"
-    return [r"\gamma^{(1)}&=" + vec(first),
-            r"\gamma^{(2)}&=\cos(%s)\,R-\sin(%s)\,Q,\quad \gamma^{(3)}=\sin(%s)\,R+\cos(%s)\,Q" % ((phase,) * 4),
-            r"R&=" + vec(R), r"Q&=" + vec(Q)]
+    rows = [(r"\gamma^{(1)}_{%d}" % (k + 1), x) for k, x in enumerate(first)]
+    rows.append(r"\gamma^{(2)}=\cos(%s)\,R-\sin(%s)\,Q,\quad \gamma^{(3)}=\sin(%s)\,R+\cos(%s)\,Q" % ((phase,) * 4))
+    rows += [(r"%s_{%d}" % (name, k + 1), x) for name, vector in (("R", R), ("Q", Q)) for k, x in enumerate(vector)]
+    return rows
 
 
 def coefficient_tables(options) -> dict:
@@ -419,7 +421,7 @@ def coefficient_tables(options) -> dict:
         if p > 15:
             break
         for j in range(1, (p - 1) // 2 + 1):
-            f1_rows.append({"p": p, "j": j, "c": sp.latex(sp.factor(hypergeometric_coefficient(j, p, ds)))})
+            f1_rows.append({"p": p, "j": j, "c": latex(sp.factor(hypergeometric_coefficient(j, p, ds)))})
         if p <= 7:
             F, Fhat = hypergeometric_polynomials(p)
             J = (p - 1) // 2
@@ -427,8 +429,8 @@ def coefficient_tables(options) -> dict:
             Fs, Fh = sp.Poly(to_sympy(F), xs), sp.Poly(to_sympy(Fhat), xs)
             for kk in range(max(Fs.degree(), Fh.degree()) + 1):
                 f_rows.append({"p": p, "k": kk,
-                               "F": sp.latex(sp.factor(Fs.coeff_monomial(xs**kk) / den2, extension=sp.I)),
-                               "Fhat": sp.latex(sp.factor(Fh.coeff_monomial(xs**kk) / den2, extension=sp.I))})
+                               "F": latex(sp.factor(Fs.coeff_monomial(xs**kk) / den2, extension=sp.I)),
+                               "Fhat": latex(sp.factor(Fh.coeff_monomial(xs**kk) / den2, extension=sp.I))})
     return {"f1": f1_rows, "f": f_rows}
 
 
@@ -485,7 +487,7 @@ def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
         if p > 3:
             continue
         result.formula(f"basis{p}", "gam1, gam2, gam3, eq:gam3", f"Orthonormal basis for $p={p}$ ($c=\\sqrt{{d^2+1}}$)",
-                       r"\begin{aligned}" + r"\\".join(written_out(basis)) + r"\end{aligned}",
+                       written_out(basis),
                        *[c for c in log.certificates if c.key in rows[(p - 1) // 2]["certificates"]])
     result.exports.update(objects=objects, bases=bases, rows=rows, sigma={r["p"]: r["sigma"] for r in rows}, tables=coefficient_tables(options))
     return result

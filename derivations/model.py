@@ -35,12 +35,13 @@ import sympy as sp
 from . import paper
 from .certificates import CertificateLog, Outcome
 from .differential import S, T, hyperbolic_ring, lie_derivative, ode_residuals, t
+from .emit import Emitted
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero
 from .numeric import corroborate, ode_residual
-from .emit import Emitted
 from .result import DerivationResult
 from .symbols import I11, I13, I22, I23, I33, g1, g2, g3, gamma, lam, omega, r, w1, w2
+from .typeset import latex
 
 NAME = "model"
 TITLE = "Euler-Poisson equations and their general solution (sections 1-2)"
@@ -135,7 +136,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
                                  [paper.GEN12_FIELD[x] + I11 * I22 * field[x] for x in (w1, w2)], RATIONAL)
     entries = sorted({str(s) for v in field.values() for s in v.free_symbols} - {"omega1", "omega2"})
     result.formula("euler", "gen12", "Reduced Euler equations (derived from 3.25)",
-                   r"\dot\omega_1=" + sp.latex(field[w1]) + r",\qquad \dot\omega_2=" + sp.latex(field[w2]),
+                   r"\dot\omega_1=" + latex(field[w1]) + r",\qquad \dot\omega_2=" + latex(field[w2]),
                    c_euler, c_gen12_scale)
     result.formula("lambda", "3.25", "Lagrange multiplier", sp.Eq(lam, multiplier), c_euler, c_lambda)
     result.notes.append(
@@ -144,7 +145,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
         "it only enters through det I = 1).")
     result.errata.append(erratum(
         paper.GEN12, "corrected",
-        r"\dot\omega_1=" + sp.latex(field[w1]) + r",\ \dot\omega_2=" + sp.latex(field[w2]),
+        r"\dot\omega_1=" + latex(field[w1]) + r",\ \dot\omega_2=" + latex(field[w2]),
         "printed right-hand sides are the derived ones times -I11 I22, i.e. the printed system runs in "
         "the time tau = -I11 I22 t (consistent with the printed ep3.26)",
         c_gen12, c_gen12_scale))
@@ -155,7 +156,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
                              paper.WHOLE.label, [poisson[x] - paper.WHOLE_FIELD[x] for x in (g1, g2, g3)],
                              RATIONAL)
     result.formula("poisson", "eq:whole", "Poisson equations",
-                   r",\ ".join(r"\dot\gamma_%d=%s" % (i + 1, sp.latex(poisson[x]))
+                   r",\ ".join(r"\dot\gamma_%d=%s" % (i + 1, latex(poisson[x]))
                                for i, x in enumerate((g1, g2, g3))), c_poisson)
     result.errata.append(erratum(paper.WHOLE, "confirmed", paper.WHOLE.latex,
                                  "derived from R' = R hat(omega), gamma = R^T e", c_poisson))
@@ -188,8 +189,8 @@ def run(log: CertificateLog, options) -> DerivationResult:
                           "eq:o12", [(I13 * solution[w1] + I23 * solution[w2]).subs({S: 0, T: s}) for s in (1, -1)],
                           WITH_R)
     result.formula("o12", "eq:o12, c's", "General solution (rate $A=1$), $r=\\pm\\sqrt{I_{11}I_{22}}$",
-                   r"\omega_1=" + sp.latex(solution[w1].subs({T: sp.Symbol(r"\tanh t"), S: sp.Symbol(r"\operatorname{sech} t")}))
-                   + r",\quad \omega_2=" + sp.latex(solution[w2].subs({T: sp.Symbol(r"\tanh t"), S: sp.Symbol(r"\operatorname{sech} t")})),
+                   [(r"\omega_%d" % (k + 1), solution[w].subs({T: sp.tanh(sp.Symbol("t")), S: sp.sech(sp.Symbol("t"))}))
+                    for k, w in enumerate((w1, w2))],
                    c_uv, c_uv_sol, c_sol, *numeric_certs, c_line)
 
     # 5. the printed general solution
@@ -230,7 +231,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
                              F1.subs(solution, simultaneous=True) - paper.ENLEV_VALUE, RING.domain,
                              expect=Outcome.FAIL)
     result.formula("integrals", "section 2", "First integrals",
-                   r"F_1=" + sp.latex(sp.expand(F1)) + r",\quad F_2=" + sp.latex(F2), c_f1, c_f1p, c_f2)
+                   r"F_1=" + latex(sp.expand(F1)) + r",\quad F_2=" + latex(F2), c_f1, c_f1p, c_f2)
     result.formula("enlev", "eq:enlev", "Energy on the normalised solution ($D=I_{13}^2I_{22}+I_{23}^2I_{11}$)",
                    r"F_1=\frac{(I_{11}I_{22})^2}{D}", c_en)
     result.errata.append(erratum(

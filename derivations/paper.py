@@ -126,6 +126,14 @@ NECC1 = Printed(
 )
 NECC1_P2 = (I11 - I22) / (I11 * I22 * (I11 * I22 * I33 - 1))
 
+# proof of Proposition 4.1: I23^2 from eq:necc1 as a quadratic, and I22 I33 - I23^2 for the root with sign -
+PROP41 = Printed(
+    "Proposition 4.1 (proof)",
+    r"I_{23}^2=\frac{I_{22}}{2(I_{11}-I_{22})}\Big(p^2+2I_{33}(I_{11}-I_{22})\pm p\sqrt{p^2+4I_{33}(I_{11}-I_{22})}\Big),"
+    r"\ I_{22}I_{33}-I_{23}^2=\frac{I_{22}}{2(I_{11}-I_{22})}\Big(-p^2+p\sqrt{p^2+2I_{33}(I_{11}-I_{22})}\Big)",
+    "section 4, Proposition 4.1",
+)
+
 AM2 = Printed(
     "eq:am2",
     r"A_0=\begin{bmatrix}0&0&-\frac{ip\sqrt{d^2+1}}{d}\\0&0&\frac{p}{d}\\"

@@ -10,12 +10,34 @@ keeps them (:data:`TEX_BYPRODUCTS`, used by ``derivations.pipeline``).
 from __future__ import annotations
 
 import fnmatch
+import re
 import shutil
 import subprocess
 from pathlib import Path
 
 TEX_BYPRODUCTS = ("*.aux", "*.log", "*.pdf", "*.out", "*.toc", "*.fls", "*.fdb_latexmk", "*.synctex.gz", "*.dvi")
-DOCUMENTS = ("suslov_formulas.tex",)
+DOCUMENTS = ("suslov_formulas.tex", "certificates.tex")
+
+
+OVERFULL = re.compile(r"Overfull \\hbox \(([\d.]+)pt too wide\) (?:in paragraph at lines (\d+)--\d+|in alignment at "
+                      r"lines (\d+)--\d+|detected at line (\d+))")
+FONT_PROBLEMS = re.compile(r"Missing character: There is no .*|LaTeX Font Warning: .*")
+TOLERANCE_PT = 1.0
+
+
+def layout_problems(log_text: str, tolerance_pt: float = TOLERANCE_PT) -> list[str]:
+    """Typesetting faults in a pdflatex log: overfull boxes wider than ``tolerance_pt``, missing
+    characters and font substitutions, one line each (with the source line TeX reports)."""
+    problems = [f"overfull hbox {float(m.group(1)):.1f} pt at line {next(g for g in m.groups()[1:] if g)}"
+                for m in OVERFULL.finditer(log_text) if float(m.group(1)) > tolerance_pt]
+    return problems + [m.group(0).strip() for m in FONT_PROBLEMS.finditer(log_text)]
+
+
+def page_count(log_text: str) -> int:
+    """Pages of the PDF, as pdflatex reports them at the end of its log ("Output written on ... (N pages")."""
+    # TeX wraps log lines at 79 characters, also inside a long output path
+    found = re.findall(r"Output written on .*?\((\d+) pages?", log_text.replace("\n", ""))
+    return int(found[-1]) if found else 0
 
 
 class PdfError(RuntimeError):
@@ -44,3 +66,9 @@ def compile_pdfs(source: Path, outdir: Path, passes: int = 2) -> list[Path]:
                 raise PdfError(f"pdflatex failed on {document}; see {outdir / Path(document).with_suffix('.log')}")
         written.append(outdir / Path(document).with_suffix(".pdf").name)
     return written
+
+
+def document_report(pdf: Path) -> tuple[int, list[str]]:
+    """(pages, layout problems) of a PDF compiled by :func:`compile_pdfs`, read from its log."""
+    log_text = Path(pdf).with_suffix(".log").read_text(encoding="latin-1")
+    return page_count(log_text), layout_problems(log_text)

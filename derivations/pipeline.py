@@ -45,6 +45,7 @@ OUTPUTS = (
     ("suslov_formulas.py.j2", "suslov_formulas.py", MODULE_NEEDS),
     ("suslov_formulas.tex.j2", "suslov_formulas.tex", ()),
     ("formulas_body.tex.j2", "formulas_body.tex", ()),
+    ("certificates.tex.j2", "certificates.tex", ()),
     ("certificates_table.tex.j2", "certificates_table.tex", ()),
     ("errata_table.tex.j2", "errata_table.tex", ()),
     ("per_p_table.tex.j2", "per_p_table.tex", ("special_case",)),

@@ -8,8 +8,17 @@ from __future__ import annotations
 
 from types import ModuleType
 
-from . import (first_integrals, galois, hypergeometric, kovalevskaya, meromorphic, model, residue, scattering,
-               special_case)
+from . import (
+    first_integrals,
+    galois,
+    hypergeometric,
+    kovalevskaya,
+    meromorphic,
+    model,
+    residue,
+    scattering,
+    special_case,
+)
 
 DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, kovalevskaya, residue, hypergeometric,
                                                    meromorphic, first_integrals, scattering, galois)}

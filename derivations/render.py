@@ -19,6 +19,8 @@ import jinja2
 import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
+from .typeset import latex
+
 TEMPLATES = Path(__file__).resolve().parent.parent / "templates"
 
 _TEX_SPECIALS = {
@@ -31,6 +33,15 @@ _TEX_SPECIALS = {
 def tex_escape(text) -> str:
     """Escape plain text for TeX (claims, notes, details)."""
     return "".join(_TEX_SPECIALS.get(ch, ch) for ch in str(text))
+
+
+_BREAK_AFTER = ",/([=+"
+
+
+def tex_breakable(text) -> str:
+    """:func:`tex_escape`, with a permitted line break after punctuation inside long tokens
+    (``Q(I11,I22,I13,I23)[r,i]/(r^2-I11 I22)`` must fit a narrow column)."""
+    return "".join(_TEX_SPECIALS.get(ch, ch) + (r"\allowbreak{}" if ch in _BREAK_AFTER else "") for ch in str(text))
 
 
 class _ArithmeticPrinter(PythonCodePrinter):
@@ -58,8 +69,9 @@ def _environment(tex: bool) -> jinja2.Environment:
                        variable_end_string="}", comment_start_string=r"\#{", comment_end_string="}")
     env = jinja2.Environment(**options)
     env.filters["tex"] = tex_escape
+    env.filters["breakable"] = tex_breakable
     env.filters["py"] = python_source
-    env.filters["latex"] = sp.latex
+    env.filters["latex"] = latex
     return env
 
 

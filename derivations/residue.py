@@ -47,14 +47,15 @@ from math import factorial
 
 import sympy as sp
 
-from . import paper
+from . import paper, physical_bodies
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
+from .differential import S, T
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero
 from .result import DerivationResult
 from .special_case import C_EXT, PD_DOMAIN, poisson_matrix
 from .symbols import I11, I13, I22, I23, c, d, p, r
-from .differential import S, T
+from .typeset import breakable_product, latex
 
 NAME = "residue"
 TITLE = "Residue matrix, gauge and logarithms at the poles of $\\omega(t)$ (section 3.2)"
@@ -227,24 +228,6 @@ def nowhere_zero_for_positive_d(value: sp.Expr) -> bool:
     return value != 0
 
 
-def physical_body(p_value: int) -> dict:
-    """A rational inertia tensor with I13 = 0 and p^2 = I22 (I11 - I22)/I23^2."""
-    I = {"I11": Fraction(5, 4), "I22": Fraction(1), "I33": Fraction(1), "I23": Fraction(1, 2 * p_value),
-         "I13": Fraction(0)}
-    return I
-
-
-def check_body(I: dict, p_value: int) -> tuple[bool, str]:
-    minors = [I["I11"], I["I11"] * I["I22"], I["I11"] * (I["I22"] * I["I33"] - I["I23"] ** 2)]
-    positive = all(m > 0 for m in minors)
-    meromorphic = I["I22"] * (I["I11"] - I["I22"]) / I["I23"] ** 2 == p_value**2
-    spread = (I["I22"] - I["I33"]) ** 2 + 4 * I["I23"] ** 2  # (J2 - J3)^2
-    triangle = I["I11"] < I["I22"] + I["I33"] and spread < I["I11"] ** 2
-    ok = positive and meromorphic and triangle
-    return ok, (f"leading minors {', '.join(str(m) for m in minors)} > 0; p^2 = {p_value**2}; "
-                f"I11 < J2+J3 = {I['I22'] + I['I33']}; (J2-J3)^2 = {spread} < I11^2 = {I['I11'] ** 2}")
-
-
 def run(log: CertificateLog, options, model_result, kova_result, special_result) -> DerivationResult:
     result = DerivationResult(NAME)
     # the largest truncation any p <= pmax uses (laurent_coefficients(p + 1)): lower orders are prefixes
@@ -269,7 +252,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
                         "-i pi/2)", "eq:ro", [sp.expand((A_plus - rho * sp.eye(3)).det()) + rho * (rho**2 - rho2),
                                               sp.expand((A_minus - rho * sp.eye(3)).det())
                                               + rho * (rho**2 - rho2.subs(sp.I, -sp.I))], GENERIC)
-    result.errata.append(erratum(paper.AM1, "corrected", sp.latex(fixed) + r"\ (t_0=i\pi/2)",
+    result.errata.append(erratum(paper.AM1, "corrected", latex(fixed) + r"\ (t_0=i\pi/2)",
                                  "entry (2,3) must be a - (i/2) c1: A0 has the structure of A(t) (entry (2,3) = "
                                  "-entry (3,2)); eq:ro and eq:am2 are at +i pi/2", c_am1_plus, c_am1_minus,
                                  c_am1_fixed, c_ro))
@@ -295,7 +278,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
     result.errata.append(erratum(paper.NECC2, "confirmed", paper.NECC2.latex,
                                  "with the derived coefficients; equivalent to the corrected eq:necc1", c_n2))
     result.formula("am1", "eq:am1, eq:ro", "Residue of $A(t)$ at $t_0=i\\pi/2$ and its eigenvalues",
-                   r"A_0=" + sp.latex(fixed) + r",\quad \rho\in\{0,\pm\rho_2\},\ \rho_2^2=\tfrac14\big(c_1^2+c_2^2-4(a^2+b^2)"
+                   r"A_0=" + latex(fixed) + r",\quad \rho\in\{0,\pm\rho_2\},\ \rho_2^2=\tfrac14\big(c_1^2+c_2^2-4(a^2+b^2)"
                    r"+4i(ac_1+bc_2)\big)=\Lambda^2", c_am1_fixed, c_ro, c_link)
 
     # special case: S, gauge U, B0
@@ -304,7 +287,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
     c_S = certify_zero(log, "printed S: S^-1 A0 S = diag(p, 0, -p) (A0 of eq:am2)", "eq:am2",
                        list(A0 * S_printed - S_printed * sp.diag(p, 0, -p)), PD_DOMAIN)
     result.formula("S", "eq:am2", "Diagonalisation of $A_0$", r"S^{-1}A_0S=\operatorname{diag}(p,0,-p),\ S="
-                   + sp.latex(S_printed), c_S)
+                   + latex(S_printed), c_S)
     gauge_certs = []
     for p_value in [q for q in (2, 3) if q <= options.pmax]:
         with stopwatch() as elapsed:
@@ -333,7 +316,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
             "exact Frobenius recursion in Q(d) (resonance obstructions)", Outcome.PASS, elapsed[0],
             len(obstructions), detail[:400]))
         log_rows.append({"p": p_value, "parity": "odd" if p_value % 2 else "even", "verdict": verdict,
-                         "obstructions": [sp.latex(sp.factor(v)) for _, _, v in nonzero][:2],
+                         "obstructions": [breakable_product(v) for _, _, v in nonzero][:2],
                          "certificate": cert.key})
     has_logs = [row["p"] for row in log_rows if row["verdict"] != "no logarithms"]
     if has_logs:
@@ -352,17 +335,8 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
                                                               + " (a non-zero resonance obstruction); confirmed for "
                                                               "the other p <= %d." % options.pmax))
 
-    # physical bodies
-    body_rows = []
-    for p_value in options.p_values():
-        body = physical_body(p_value)
-        with stopwatch() as elapsed:
-            ok, detail = check_body(body, p_value)
-        cert = log.record(Certificate(
-            f"p = {p_value}: I = [[5/4,0,0],[0,1,1/(2p)],[0,1/(2p),1]] is positive definite, its eigenvalues satisfy "
-            "the triangle inequalities, and I22 (I11-I22)/I23^2 = p^2", "Proposition 4.1",
-            "exact rational arithmetic", Outcome.PASS if ok else Outcome.FAIL, elapsed[0], 3, detail))
-        det = body["I11"] * (body["I22"] * body["I33"] - body["I23"] ** 2)
-        body_rows.append({"p": p_value, "I23": str(body["I23"]), "det": str(det), "certificate": cert.key})
+    # physical bodies (Proposition 4.1) and the displays of its proof
+    body_rows = physical_bodies.body_rows(log, options.p_values())
+    physical_bodies.proof_errata(log, result)
     result.exports.update(log_rows=log_rows, body_rows=body_rows)
     return result

@@ -7,6 +7,7 @@ import sympy as sp
 
 from .certificates import Certificate
 from .errata import Erratum
+from .typeset import clauses, display
 
 
 @dataclass
@@ -28,9 +29,19 @@ class DerivationResult:
     exports: dict = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
 
-    def formula(self, key: str, label: str, title: str, latex: str | sp.Basic,
+    def formula(self, key: str, label: str, title: str, latex: str | sp.Basic | list,
                 *certificates: Certificate) -> DerivedFormula:
-        text = latex if isinstance(latex, str) else sp.latex(latex)
+        """Record a formula; ``latex`` is LaTeX text, an expression, or display rows (:func:`typeset.display`).
+
+        Text wider than the page is set one clause per line (split after the ``,\\quad`` that
+        separate clauses at brace depth 0).
+        """
+        if isinstance(latex, list):
+            text = display(*latex)
+        elif isinstance(latex, str):
+            text = display(*clauses(latex))
+        else:
+            text = display(("", latex))
         item = DerivedFormula(key, label, title, text, [c.key for c in certificates])
         self.formulas.append(item)
         return item

@@ -45,12 +45,12 @@ import sympy as sp
 
 from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
+from .emit import Emitted
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero
 from .model import I33_FROM_DET
 from .numeric import corroborate
 from .poisson_taylor import eval_series, limit_series, ss_through
-from .emit import Emitted
 from .result import DerivationResult
 from .special_case import I_DOMAIN
 from .symbols import I11, I13, I22, I23, I33, d, g1, g2, g3, p, w1, w2

@@ -29,16 +29,16 @@ from __future__ import annotations
 import mpmath
 import sympy as sp
 
-from . import paper
+from . import model, paper
 from .certificates import CertificateLog, Outcome
 from .differential import S, T, hyperbolic_ring, lie_derivative, ode_residuals, t
+from .emit import Emitted
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero
 from .numeric import corroborate, mp_function, ode_residual
-from .emit import Emitted
 from .result import DerivationResult
 from .symbols import I11, I13, I22, I23, I33, c, d, p, r, w1, w2, x
-from . import model
+from .typeset import latex
 
 NAME = "special_case"
 TITLE = "The case $I_{13}=0$ in the variables $p$, $d$ (section 4)"
@@ -133,13 +133,13 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     c_energy = certify_zero(log, "I11 w1^2 + I22 w2^2 = I22 F1 under the substitution", paper.CCALKI.label,
                             (I11 * w1**2 + I22 * w2**2).subs(SUBSTITUTION) - I22 * F1, PD_FIELD)
     result.formula("sysfin", "eq:sysfin", "Euler equations for $I_{13}=0$",
-                   r"\dot\omega_1=" + sp.latex(sysfin[w1]) + r",\quad\dot\omega_2=" + sp.latex(sysfin[w2]),
+                   r"\dot\omega_1=" + latex(sysfin[w1]) + r",\quad\dot\omega_2=" + latex(sysfin[w2]),
                    c_sys)
     result.formula("ccalki", "eq:ccalki", "First integrals",
                    r"F_1=(d^2+1)\omega_1^2+\omega_2^2,\quad F_2=\gamma_1^2+\gamma_2^2+\gamma_3^2", c_f1, c_f2,
                    c_energy)
     result.errata.append(erratum(
-        paper.SYSFIN, "corrected", r"\dot\omega_1=+" + sp.latex(sysfin[w1]) + r",\ \dot\omega_2=" + sp.latex(sysfin[w2]),
+        paper.SYSFIN, "corrected", r"\dot\omega_1=+" + latex(sysfin[w1]) + r",\ \dot\omega_2=" + latex(sysfin[w2]),
         "the sign is not a free choice: only + follows from the Euler equations, and with - the "
         "energy F1 of eq:ccalki is not conserved", c_sys, c_sys_minus, c_f1_minus))
 
@@ -211,8 +211,8 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     c_char = certify_zero(log, "det(A0 - lambda) = -(lambda^3 - p^2 lambda): eigenvalues 0, +-p", "eq:ro",
                           lam_poly + lam**3 - p**2 * lam, PD_DOMAIN)
     result.formula("A0", "eq:am2, eq:ro", "Residue of $A(t)$ at $t_0=i\\pi/2$ and its eigenvalues",
-                   r"A_0=" + sp.latex(A0.subs(c, sp.Symbol(r"\sqrt{d^2+1}"))) + r",\quad \det(A_0-\lambda)="
-                   + sp.latex(sp.factor(-lam**3 + p**2 * lam)), c_am2, c_res_num, c_char)
+                   r"A_0=" + latex(A0.subs(c, sp.Symbol(r"\sqrt{d^2+1}"))) + r",\quad \det(A_0-\lambda)="
+                   + latex(sp.factor(-lam**3 + p**2 * lam)), c_am2, c_res_num, c_char)
     result.errata.append(erratum(paper.AM2, "confirmed", paper.AM2.latex, "derived as an exact residue",
                                  c_am2, c_res_num))
 
@@ -223,8 +223,8 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                             "eq:ro", sp.expand((A0.subs(p, p_value) - lam * sp.eye(3)).det())
                             + lam * (lam - p_value) * (lam + p_value), Domain("Q(d)[c]/(c^2-d^2-1)", (C_EXT,)))
         per_p.append({"p": p_value, "parity": "odd" if p_value % 2 else "even",
-                      "eigenvalues": f"0, {p_value}, -{p_value}", "level": sp.latex(p_value**2 * (d**2 + 1) / d**2),
-                      "rate": sp.latex(sp.Integer(p_value) / d), "certificate": cert.key})
+                      "eigenvalues": f"0, {p_value}, -{p_value}", "level": latex(p_value**2 * (d**2 + 1) / d**2),
+                      "rate": latex(sp.Integer(p_value) / d), "certificate": cert.key})
 
     # 5. the inverse map (I11, I22, I23) -> (p, d), emitted for special_case_parameters
     p_of_inertia = -I22 * d / I23

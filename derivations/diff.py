@@ -1,0 +1,194 @@
+"""Differences between two generated trees, as researchers diff a paper (``build_formulas.py --diff OLD``).
+
+OLD is a generated directory or a git revision (its ``generated/`` is read with ``git show``,
+nothing is checked out).  The report names what changed, by what a reader recognises:
+
+* **formulas**: the paragraphs of ``formulas_body.tex`` (one per derived formula, keyed by
+  section and title): added, removed, changed;
+* **tables**: the per-p, errata, monodromy, Galois, basis and integral tables: which changed,
+  with the number of rows added and removed;
+* **certificates**: from ``certificates.json``, matched by (derivation, paper label, claim), not
+  by key (keys are sequence numbers and shift when a certificate is inserted): added, removed,
+  outcome or method changed; errata rows by label: added, removed, status changed.
+
+Then ``latexdiff --flatten`` marks the changes in the formulas document and pdflatex compiles
+it into OUTDIR (default ``build/diff/``, outside the tracked tree).  Debian: ``apt-get install
+latexdiff``.
+"""
+from __future__ import annotations
+
+import difflib
+import json
+import re
+import shutil
+import subprocess
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+DOCUMENT = "suslov_formulas.tex"
+TABLES = ("errata_table.tex", "per_p_table.tex", "monodromy_tables.tex", "galois_tables.tex", "basis_tables.tex",
+          "integrals_table.tex")
+
+
+class DiffError(RuntimeError):
+    """OLD cannot be read, or latexdiff/pdflatex is missing or failed; the message says which."""
+
+
+@dataclass
+class TreeDiff:
+    formulas: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": []})
+    tables: list = field(default_factory=list)
+    certificates: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": []})
+    errata: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": []})
+
+    def empty(self) -> bool:
+        return not (self.tables or any(self.formulas.values()) or any(self.certificates.values())
+                    or any(self.errata.values()))
+
+
+def materialise(old: str, repository: Path, into: Path) -> Path:
+    """The OLD tree as a directory: OLD itself if it is one, else ``git show REV:generated/*`` into ``into``."""
+    candidate = Path(old)
+    if candidate.is_dir():
+        if not (candidate / DOCUMENT).is_file():
+            raise DiffError(f"--diff {old}: directory without {DOCUMENT} (not a generated tree)")
+        return candidate
+    listing = subprocess.run(["git", "-C", str(repository), "ls-tree", "--name-only", f"{old}:generated"],
+                             capture_output=True, text=True, check=False)
+    if listing.returncode != 0:
+        raise DiffError(f"--diff {old}: neither a directory nor a git revision with a generated/ tree "
+                        f"({listing.stderr.strip().splitlines()[-1] if listing.stderr.strip() else 'git failed'})")
+    into.mkdir(parents=True, exist_ok=True)
+    for name in listing.stdout.split():
+        if name.endswith((".tex", ".json", ".py")):
+            blob = subprocess.run(["git", "-C", str(repository), "show", f"{old}:generated/{name}"],
+                                  capture_output=True, check=True)
+            (into / name).write_bytes(blob.stdout)
+    if not (into / DOCUMENT).is_file():
+        raise DiffError(f"--diff {old}: that revision has no generated/{DOCUMENT}")
+    return into
+
+
+_DISPLAY = re.compile(r"\\begin\{(gather|equation)\*\}(.*?)\\end\{\1\*\}", re.S)
+
+
+def _braced(text: str, start: int) -> str:
+    """The argument of the brace group opening at ``text[start]`` (nested braces kept)."""
+    depth = 0
+    for index in range(start, len(text)):
+        depth += (text[index] == "{") - (text[index] == "}")
+        if depth == 0:
+            return text[start + 1:index]
+    return text[start + 1:]
+
+
+def formula_paragraphs(body: str) -> dict[str, str]:
+    """``section / title`` -> the displayed mathematics of that formula, from ``formulas_body.tex``.
+
+    Only the display is compared (whitespace ignored): certificate keys are sequence numbers and
+    shift when a certificate is added elsewhere, which changes no formula.
+    """
+    out, section = {}, ""
+    marks = sorted([(m.start(), "section") for m in re.finditer(r"\\section\{", body)]
+                   + [(m.start(), "paragraph") for m in re.finditer(r"\\paragraph\{", body)])
+    for index, (position, kind) in enumerate(marks):
+        title = _braced(body, body.index("{", position))
+        if kind == "section":
+            section = title
+            continue
+        end = marks[index + 1][0] if index + 1 < len(marks) else len(body)
+        display = _DISPLAY.search(body, position, end)
+        out[f"{section} / {title}"] = "".join(display.group(2).split()) if display else ""
+    return out
+
+
+def _certificate_index(document: dict) -> dict:
+    return {(c["derivation"], c["label"], c["claim"]): c for c in document.get("certificates", [])}
+
+
+def _read(directory: Path, name: str) -> str:
+    path = directory / name
+    return path.read_text(encoding="utf-8") if path.is_file() else ""
+
+
+def compare(old: Path, new: Path) -> TreeDiff:
+    """What changed from the tree ``old`` to the tree ``new``."""
+    result = TreeDiff()
+    before, after = (formula_paragraphs(_read(d, "formulas_body.tex")) for d in (old, new))
+    result.formulas["added"] = [k for k in after if k not in before]
+    result.formulas["removed"] = [k for k in before if k not in after]
+    result.formulas["changed"] = [k for k in after if k in before and after[k] != before[k]]
+    for name in TABLES:
+        a, b = _read(old, name).splitlines(), _read(new, name).splitlines()
+        if a != b:
+            ops = list(difflib.ndiff(a, b))
+            result.tables.append((name, sum(o.startswith("+ ") for o in ops), sum(o.startswith("- ") for o in ops)))
+    docs = [json.loads(_read(d, "certificates.json") or "{}") for d in (old, new)]
+    c_old, c_new = (_certificate_index(d) for d in docs)
+    result.certificates["added"] = [c_new[k] for k in c_new if k not in c_old]
+    result.certificates["removed"] = [c_old[k] for k in c_old if k not in c_new]
+    result.certificates["changed"] = [(c_old[k], c_new[k]) for k in c_new if k in c_old and
+                                      (c_old[k]["outcome"], c_old[k]["method"]) != (c_new[k]["outcome"],
+                                                                                    c_new[k]["method"])]
+    e_old, e_new = ({e["label"]: e for e in d.get("errata", [])} for d in docs)
+    result.errata["added"] = [e_new[k] for k in e_new if k not in e_old]
+    result.errata["removed"] = [e_old[k] for k in e_old if k not in e_new]
+    content = ("status", "printed", "derived", "note")   # certificate keys are sequence numbers: not compared
+    result.errata["changed"] = [(e_old[k], e_new[k]) for k in e_new if k in e_old and
+                                [e_old[k].get(f) for f in content] != [e_new[k].get(f) for f in content]]
+    return result
+
+
+def report(diff: TreeDiff, old_name: str, new_name: str) -> str:
+    """The change list, one line per item (what a reader looks for first)."""
+    if diff.empty():
+        return f"{old_name} -> {new_name}: no formula, table, certificate or erratum changed"
+    lines = [f"{old_name} -> {new_name}:"]
+    for kind, items in diff.formulas.items():
+        lines += [f"  formula {kind}: {k}" for k in items]
+    lines += [f"  table changed: {name} (+{plus} -{minus} lines)" for name, plus, minus in diff.tables]
+    lines += [f"  certificate added: [{c['label']}] {c['claim']} ({c['outcome']})" for c in diff.certificates["added"]]
+    lines += [f"  certificate removed: [{c['label']}] {c['claim']}" for c in diff.certificates["removed"]]
+    lines += [f"  certificate changed: [{a['label']}] {a['claim']}: {a['outcome']} ({a['method']}) -> {b['outcome']} "
+              f"({b['method']})" for a, b in diff.certificates["changed"]]
+    lines += [f"  erratum added: {e['label']} ({e['status']})" for e in diff.errata["added"]]
+    lines += [f"  erratum removed: {e['label']}" for e in diff.errata["removed"]]
+    lines += [f"  erratum changed: {a['label']} ("
+              + (f"{a['status']} -> {b['status']}" if a["status"] != b["status"] else f"still {b['status']}; "
+                 + ", ".join(f for f in ("printed", "derived", "note") if a.get(f) != b.get(f)) + " changed") + ")"
+              for a, b in diff.errata["changed"]]
+    return "\n".join(lines)
+
+
+def latexdiff_pdf(old: Path, new: Path, outdir: Path) -> Path:
+    """``latexdiff --flatten`` of the formulas document, compiled into ``outdir``; returns the PDF."""
+    for tool, package in (("latexdiff", "latexdiff"), ("pdflatex", "texlive-latex-base")):
+        if shutil.which(tool) is None:
+            raise DiffError(f"{tool} not found (Debian: apt-get install {package})")
+    outdir = Path(outdir).resolve()
+    outdir.mkdir(parents=True, exist_ok=True)
+    marked = subprocess.run(["latexdiff", "--flatten", str(Path(old).resolve() / DOCUMENT),
+                             str(Path(new).resolve() / DOCUMENT)], capture_output=True, text=True, check=False,
+                            timeout=600)
+    if marked.returncode != 0:
+        raise DiffError(f"latexdiff failed: {marked.stderr.strip()[-500:]}")
+    source = outdir / "suslov_formulas-diff.tex"
+    source.write_text(marked.stdout, encoding="utf-8")
+    for _ in range(2):
+        run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", source.name], cwd=outdir,
+                             capture_output=True, text=True, check=False, timeout=600)
+        if run.returncode != 0:
+            raise DiffError(f"pdflatex failed on {source}; see {source.with_suffix('.log')}")
+    return source.with_suffix(".pdf")
+
+
+def diff_trees(old: str, new: Path, repository: Path, outdir: Path | None, echo=print) -> Path | None:
+    """Print the change list with ``echo``, then write the latexdiff PDF (unless ``outdir`` is None).
+
+    Raises :class:`DiffError` naming what is missing or what failed.
+    """
+    with tempfile.TemporaryDirectory(prefix="suslov-diff-") as tmp:
+        old_tree = materialise(old, repository, Path(tmp) / "old")
+        echo(report(compare(old_tree, new), old, str(new)))
+        return latexdiff_pdf(old_tree, new, outdir) if outdir is not None else None
