@@ -34,13 +34,14 @@ from fractions import Fraction
 from pathlib import Path
 from typing import NamedTuple
 
-import flint  # noqa: F401  (python-flint ball arithmetic for the float coefficients, loaded once here)
+import flint  # python-flint ball arithmetic: the float coefficients, scattering_angle_ball
 import mpmath
 import numpy as np
 from numpy.typing import ArrayLike
 
 from suslov.kernel import fourier, horner, phase, trig_series
-from suslov.kernel.contexts import FLOAT, MP
+from suslov.kernel.contexts import ARB, FLOAT, MP
+from suslov.kernel.enclosure import to_arb
 from suslov.kernel.frames import canonical_frame, rotation_about_e3
 from suslov.kernel.validate import mp_real, odd_p, rational, real_array, real_scalar
 from suslov.recipes import basis as _basis_recipe
@@ -49,7 +50,7 @@ from suslov.recipes.rings import AcbBasisRing, BasisRing, IntegralRing, homogene
 
 __all__ = ["PMAX", "INTEGRAL_PS", "BASIS_PS", "omega", "omega_mp", "omega_general", "omega_general_mp",
            "first_integral", "first_integral_mp", "first_integral_coefficients", "gamma_basis", "gamma_basis_mp",
-           "scattering_angle", "scattering_angle_mp", "special_case_parameters", "SpecialCase", "canonical_frame",
+           "scattering_angle", "scattering_angle_mp", "scattering_angle_ball", "special_case_parameters", "SpecialCase", "canonical_frame",
            "kovalevskaya_exponents", "meromorphy", "Meromorphy", "load_certificates"]
 
 PMAX = 15
@@ -127,7 +128,7 @@ def _special_parameters(ctx, I11, I22, I23):
 def _scattering_angle(ctx, x, s, c):
     """Delta psi from x = pi |p|/(2d), s = |sin(pi p/2)|, c = |cos(pi p/2)| (Theorem 5.2, evaluation form).
 
-    Emitted from the certified expression; certificates: scattering:247, scattering:244, scattering:243.
+    Emitted from the certified expression; certificates: scattering:248, scattering:238, scattering:244.
     """
     return 2*ctx.atan2(ctx.sqrt((s*s)*(ctx.sech(x)*ctx.sech(x)) + (ctx.tanh(x)*ctx.tanh(x))), c*ctx.sech(x))
 
@@ -569,7 +570,7 @@ def scattering_angle(p: ArrayLike, d: ArrayLike) -> np.ndarray:
         cos(Delta psi / 2) = |cos(pi p/2)| / cosh(pi p/(2 d)),   cos(Delta psi) = -gamma1(+oo)
 
     (the paper's undefined ``q`` is ``d``; odd p gives Delta psi = pi).  Certified:
-    angle scattering:244, route scattering:243, stable scattering:247.
+    angle scattering:238, route scattering:244, stable scattering:248.
 
     Evaluated as ``2 atan2(sqrt(tanh^2 x + s^2 sech^2 x), c sech x)`` with
     ``x = pi |p|/(2d)`` and ``s``, ``c`` = |sin|, |cos| of ``pi p/2`` with p reduced
@@ -599,6 +600,33 @@ def scattering_angle_mp(p, d, dps: int = 50):
         out = _scattering_angle(MP, mpmath.pi * abs(p) / (2 * d), s, c)
     with mpmath.workdps(dps):
         return +out
+
+
+def scattering_angle_ball(p, d, prec: int = 128):
+    """Ball enclosure (python-flint ``arb``) of the closed form of :func:`scattering_angle`.
+
+    The same emitted expression evaluated in ball arithmetic at ``prec`` bits: the ball contains
+    the exact value of Theorem 5.2's angle at the given p, d.  ``p``, ``d``: ints, Fractions or
+    decimal strings (exact), or floats (their binary value); scalars.  For the angle of a body
+    whose p, d are not known exactly, or of a general body (I13 != 0), see
+    :func:`suslov.validated.scattering_angle_enclosure` (validated integration).
+
+    >>> ball = scattering_angle_ball(2, 1, prec=100)   # 2 arccos(1/cosh(pi)), to 100 bits
+    >>> ball.rad() < 1e-28, round(float(ball.mid()), 12)
+    (True, 2.968844459491)
+    """
+    if isinstance(prec, bool) or not isinstance(prec, int) or not 16 <= prec <= 100_000:
+        raise ValueError(f"prec={prec!r}: must be an integer number of bits in [16, 100000]")
+    saved = flint.ctx.prec
+    flint.ctx.prec = prec + 20
+    try:
+        p, d = to_arb("p", p), to_arb("d", d)
+        if not d > 0:
+            raise ValueError(f"d={d}: must be positive")
+        s, c = abs((p / 2).sin_pi()), abs((p / 2).cos_pi())
+        return _scattering_angle(ARB, flint.arb.pi() * abs(p) / (2 * d), s, c)
+    finally:
+        flint.ctx.prec = saved
 
 
 # ---------------------------------------------------------------- numeric inertia tensors

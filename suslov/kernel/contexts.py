@@ -1,4 +1,4 @@
-"""Number contexts: one emitted formula, evaluated in float64, in mpmath, or symbolically.
+"""Number contexts: one emitted formula, evaluated in float64, in mpmath, in ball arithmetic, or symbolically.
 
 The build prints each closed form once, as a function ``f(ctx, ...)`` that takes its
 elementary functions from ``ctx`` (the shape of mpmath's ``ctx_fp``/``ctx_mp``).  This
@@ -13,8 +13,9 @@ from __future__ import annotations
 
 import mpmath
 import numpy as np
+from flint import arb
 
-__all__ = ["FloatContext", "MpContext", "FLOAT", "MP"]
+__all__ = ["FloatContext", "MpContext", "ArbContext", "FLOAT", "MP", "ARB"]
 
 
 class FloatContext:
@@ -81,5 +82,33 @@ class MpContext:
     atan2 = staticmethod(mpmath.atan2)
 
 
+class ArbContext:
+    """python-flint ball arithmetic (``arb``, precision ``flint.ctx.prec``): every value is an
+    enclosure, so an emitted formula evaluated here gives a ball that contains the exact value
+    of the certified expression at the (ball) arguments."""
+
+    @staticmethod
+    def tanh(t):
+        return arb(t).tanh()
+
+    @staticmethod
+    def sech(t):
+        return arb(t).sech()
+
+    @staticmethod
+    def tanh_sech(t):
+        t = arb(t)
+        return t.tanh(), t.sech()
+
+    @staticmethod
+    def sqrt(x):
+        return arb(x).sqrt()
+
+    @staticmethod
+    def atan2(y, x):
+        return arb.atan2(arb(y), arb(x))
+
+
 FLOAT = FloatContext()
 MP = MpContext()
+ARB = ArbContext()

@@ -1,0 +1,72 @@
+"""Rigorous enclosures of the scattering angle of any body (paper section 5.1, Theorem 5.2, eq:o12).
+
+The angle between the limit rotation axes of the ss solution (``gamma(-oo) = -n``,
+``Delta psi = arccos(-<gamma(+oo), n>)``), as a python-flint ball, for any inertia tensor
+with I12 = 0 and a = e3 -- I13 != 0 included, where no closed form exists.  The coefficients
+u, v of ``omega(s) = u tanh s + v sech s`` come from the generated module's *emitted* closed form
+``_omega_general`` (certified, model:011), evaluated with probe values of (tanh, sech): exact,
+because the emitted function is linear in them.  The enclosure itself is
+:func:`suslov.kernel.enclosure.ss_angle_enclosure` (method and bounds in its module docstring).
+For I13 = 0 the ball contains the closed form ``scattering_angle(p, d)`` (Theorem 5.2, corrected),
+checked by the build (``scattering`` certificates, method "ball enclosure").
+"""
+from __future__ import annotations
+
+from flint import arb, ctx
+
+from generated import suslov_formulas as gf
+from suslov.kernel.enclosure import AngleEnclosure, ss_angle_enclosure, to_arb
+
+__all__ = ["AngleEnclosure", "omega_coefficients", "scattering_angle_enclosure"]
+
+
+class _Probe:
+    """A number context whose (tanh, sech) are fixed values: extracts the coefficients of the
+    emitted omega, which is linear in (tanh t, sech t)."""
+
+    def __init__(self, tanh, sech):
+        self._pair = (arb(tanh), arb(sech))
+
+    def tanh_sech(self, t):
+        return self._pair
+
+    sqrt = staticmethod(lambda x: arb(x).sqrt())
+
+
+def omega_coefficients(I11, I22, I13, I23, branch: int = 1) -> tuple:
+    """(u, v), each a pair of balls, with omega(s) = u tanh s + v sech s (rate 1, paper frame).
+
+    Taken from the generated module's emitted ``_omega_general`` (certified, model:011).
+    """
+    I11, I22, I13, I23 = (to_arb(n, x) for n, x in (("I11", I11), ("I22", I22), ("I13", I13), ("I23", I23)))
+    for name, x in (("I11", I11), ("I22", I22)):
+        if not x > 0:
+            raise ValueError(f"{name}={x}: must be positive")
+    if I13.is_zero() and I23.is_zero():
+        raise ValueError("I13=0 and I23=0: the constraint axis is a principal axis, every motion is an equilibrium")
+    if branch not in (1, -1):
+        raise ValueError(f"branch={branch!r}: must be +1 or -1")
+    r = branch * (I11 * I22).sqrt()
+    u = gf._omega_general(_Probe(1, 0), None, I11, I22, I13, I23, r)
+    v = gf._omega_general(_Probe(0, 1), None, I11, I22, I13, I23, r)
+    return tuple(u), tuple(v)
+
+
+def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, digits: float = 30,
+                               prec: int | None = None) -> AngleEnclosure:
+    """Rigorous enclosure of the scattering angle of any body (I12 = 0 frame, a = e3, I11, I22 > 0).
+
+    Entries are ints, Fractions, decimal strings (exact) or floats (their binary value).  For
+    I13 = 0 the result contains the closed form of Theorem 5.2 (``scattering_angle``).
+
+    >>> e = scattering_angle_enclosure("5/4", 1, "0.3", "-0.5", digits=12)
+    >>> e.width < 1e-11, e.angle.contains(e.angle.mid())
+    (True, True)
+    """
+    saved = ctx.prec
+    ctx.prec = int(prec if prec is not None else 3.33 * digits + 40)
+    try:
+        u, v = omega_coefficients(I11, I22, I13, I23, branch)
+    finally:
+        ctx.prec = saved
+    return ss_angle_enclosure(u, v, digits=digits, prec=prec)
