@@ -116,6 +116,16 @@ def step_angle_closed_form(run: Run):
                                        "p": body.p, "d": body.d}
 
 
+def step_angle_enclosure(run: Run):
+    from .validated import scattering_angle_enclosure   # python-flint balls only when asked for
+
+    enclosure = scattering_angle_enclosure(*run.plan.body.entries, digits=20)
+    run.results["scattering_angle_enclosure"] = {
+        "ball": enclosure.angle.str(25), "midpoint": float(enclosure.angle.mid()), "radius": float(enclosure.angle.rad()),
+        "method": "validated integration (limit series + Taylor steps, ball arithmetic), rigorous",
+        "entries_paper_frame": [float(x) for x in run.plan.body.entries]}
+
+
 def step_angle_integrate(run: Run):
     angle, error, sol = integrate.numeric_angle(run.plan.body)
     run.results["scattering_angle"] = {"radians": angle, "error_estimate": error,
@@ -148,6 +158,7 @@ STEPS = {
     "integrals": step_integrals,
     "angle_closed_form": step_angle_closed_form,
     "angle_integrate": step_angle_integrate,
+    "angle_enclosure": step_angle_enclosure,
     "sleigh_velocities": step_sleigh_velocities,
     "sleigh_path": step_sleigh_path,
 }
@@ -223,10 +234,10 @@ def write_outputs(run: Run, out, progress=None) -> list[str]:
                 if progress:
                     progress(f"figure {name}")
                 start = time.perf_counter()
-                figures.draw(name, run, staging / f"{name}.png")
+                written = figures.draw(name, run, staging, run.plan.scene.figures_format)
                 run.executed.append({"step": step.name, "method": step.method,
                                      "seconds": time.perf_counter() - start})
-                files.append(f"{name}.png")
+                files.extend(written)
         (staging / "results.json").write_text(json.dumps(
             {"scene": run.plan.scene.name, "results": run.results,
              "steps": [e["step"] for e in run.executed]}, indent=1, sort_keys=True) + "\n", encoding="utf-8")

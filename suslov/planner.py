@@ -11,6 +11,8 @@ Rules (the planner's whole policy, in one place):
 * The scattering angle is the closed form of Theorem 5.2 (corrected) whenever
   I13 = 0, for any real p: nothing is integrated.  Only a general body
   (I13 and I23 both non-zero) integrates the ss solution.
+* ``scattering_angle_enclosure`` is always the validated integration (python-flint balls, any
+  body); for I13 = 0 the ball contains the closed form.
 * Figures add no computation of their own beyond the effect they draw.
 """
 from __future__ import annotations
@@ -102,7 +104,11 @@ def make_plan(scene: Scene) -> Plan:
             else:
                 add(Step("angle_integrate", "DOP853 rtol=1e-12 on ss from the series start to lam t = 40",
                          "general body: no closed form"))
+        if "scattering_angle_enclosure" in wanted:
+            add(Step("angle_enclosure", "validated integration in ball arithmetic (suslov.validated), 1e-20",
+                     "scattering_angle_enclosure requested: a rigorous ball, any body"))
     for name in scene.figures:
-        add(Step(f"figure:{name}", "matplotlib (Agg) PNG", f"figure {name} requested"))
+        add(Step(f"figure:{name}", "matplotlib (Agg), " + ", ".join(f.upper() for f in scene.figures_format),
+                 f"figure {name} requested"))
     return plan
 

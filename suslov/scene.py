@@ -3,6 +3,7 @@
 A scene is declarative: it names the effects wanted, never the method.  Schema::
 
     name = "fig2_gamma_ss"                 # optional, default: the file name
+    title = "Fig. 2: ..."                  # optional: figure titles (matplotlib mathtext), default: the name
     description = "..."                    # optional
 
     [body]                                 # exactly one of: inertia | p and d | kind = "sleigh"
@@ -20,8 +21,9 @@ A scene is declarative: it names the effects wanted, never the method.  Schema::
     speed = 1.0                            # sleigh only: limit speed of the blade
 
     [effects]
-    compute = ["omega", "gamma", "orientation", "integral_drift", "scattering_angle"]
+    compute = ["omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_enclosure"]
     figures = ["omega_plane", "gamma_components", "basis_sphere"]
+    figures_format = ["png", "pdf"]        # optional, default ["png"]; also "svg"
 
     [numerics]                             # optional
     rtol = 1e-10
@@ -41,7 +43,8 @@ import numpy as np
 
 from generated.suslov_formulas import canonical_frame
 
-EFFECTS = ("omega", "gamma", "orientation", "integral_drift", "scattering_angle", "contact_point")
+EFFECTS = ("omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_enclosure",
+           "contact_point")
 FIGURES = {  # figure -> effect it draws
     "omega_plane": "omega",
     "gamma_components": "gamma",
@@ -52,6 +55,7 @@ FIGURES = {  # figure -> effect it draws
 SLEIGH_EFFECTS = ("omega", "contact_point")
 METHODS = ("RK45", "DOP853", "Radau", "LSODA")
 MAX_SAMPLES = 1_000_000
+FIGURE_FORMATS = ("png", "pdf", "svg")
 
 
 class SceneError(ValueError):
@@ -78,6 +82,8 @@ class Scene:
     rtol: float = 1e-10
     atol: float = 1e-12
     method: str = "DOP853"
+    title: str = ""
+    figures_format: tuple = ("png",)
 
     @property
     def is_sleigh(self) -> bool:
@@ -149,16 +155,16 @@ def load_scene(path) -> Scene:
         raise SceneError(path, "file", "not found") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise SceneError(path, "file", f"not valid TOML ({exc})") from None
-    top = sorted(set(data) - {"name", "description", "body", "motion", "effects", "numerics"})
+    top = sorted(set(data) - {"name", "title", "description", "body", "motion", "effects", "numerics"})
     if top:
-        raise SceneError(path, top[0], "unknown field; allowed: name, description, [body], [motion], [effects], "
-                         "[numerics]")
-    for key in ("name", "description"):
+        raise SceneError(path, top[0], "unknown field; allowed: name, title, description, [body], [motion], "
+                         "[effects], [numerics]")
+    for key in ("name", "title", "description"):
         if key in data and not isinstance(data[key], str):
             raise SceneError(path, key, "must be a string")
     body = _body(path, _table(path, data, "body", ("kind", "inertia", "p", "d", "mass", "offset")))
     motion = _table(path, data, "motion", ("time", "samples", "energy", "initial", "gamma0", "speed"))
-    effects = _table(path, data, "effects", ("compute", "figures"))
+    effects = _table(path, data, "effects", ("compute", "figures", "figures_format"))
     numerics = _table(path, data, "numerics", ("rtol", "atol", "method"))
 
     window = motion.get("time")
@@ -198,6 +204,12 @@ def load_scene(path) -> Scene:
                 raise SceneError(path, key, f"unknown effect {v!r}; known: {', '.join(known)}")
     if not compute and not figures:
         raise SceneError(path, "effects", "nothing requested: give effects.compute and/or effects.figures")
+    formats = effects.get("figures_format", ["png"])
+    if not isinstance(formats, list) or not formats or not all(isinstance(f, str) for f in formats):
+        raise SceneError(path, "effects.figures_format", f"{formats!r}: must be a non-empty list of format names")
+    for f in formats:
+        if f not in FIGURE_FORMATS:
+            raise SceneError(path, "effects.figures_format", f"unknown format {f!r}; known: {', '.join(FIGURE_FORMATS)}")
     wanted = set(compute) | {FIGURES[f] for f in figures}
     if body["kind"] == "sleigh":
         bad = sorted(wanted - set(SLEIGH_EFFECTS))
@@ -215,4 +227,5 @@ def load_scene(path) -> Scene:
     if method not in METHODS:
         raise SceneError(path, "numerics.method", f"{method!r}: must be one of {', '.join(METHODS)}")
     return Scene(path, data.get("name", path.stem), data.get("description", ""), body, (t0, t1), samples, energy,
-                 initial, speed, list(dict.fromkeys(compute)), list(dict.fromkeys(figures)), rtol, atol, method)
+                 initial, speed, list(dict.fromkeys(compute)), list(dict.fromkeys(figures)), rtol, atol, method,
+                 data.get("title", ""), tuple(dict.fromkeys(formats)))
