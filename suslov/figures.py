@@ -17,10 +17,13 @@ PDF), with the metadata that would change between runs removed so outputs are by
 from __future__ import annotations
 
 import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.legend_handler import HandlerBase
+from matplotlib.patches import FancyArrow
+from matplotlib.quiver import Quiver
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+matplotlib.use("Agg")   # no display needed; switching is allowed as long as no figure exists yet
 
 FORMATS = ("png", "pdf", "svg")
 METADATA = {  # no version or time stamps: byte-identical files across runs
@@ -30,6 +33,19 @@ METADATA = {  # no version or time stamps: byte-identical files across runs
 }
 
 
+# SVG element ids are salted with a random uuid unless this is set: fixed, so SVG files are reproducible too
+RC = {"svg.hashsalt": "suslov-figures"}
+
+
+class _ArrowKey(HandlerBase):
+    """Legend key of a quiver drawn as an arrow (matplotlib's default key for it is a filled box)."""
+
+    def create_artists(self, legend, orig_handle, xdescent, ydescent, width, height, fontsize, trans):
+        return [FancyArrow(-xdescent, height / 2 - ydescent, width, 0, width=0.12 * height, head_width=0.7 * height,
+                           head_length=0.35 * width, length_includes_head=True,
+                           color=orig_handle.get_facecolor()[0], transform=trans)]
+
+
 def _title(run) -> str:
     scene = run.plan.scene
     return getattr(scene, "title", "") or scene.name
@@ -37,7 +53,10 @@ def _title(run) -> str:
 
 def _sphere(ax):
     u, v = np.mgrid[0:2 * np.pi:40j, 0:np.pi:20j]
-    ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.85", linewidth=0.4)
+    ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.85", linewidth=0.4,
+                      label=r"unit sphere $|\gamma|=1$")
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):   # three ticks: the default quarter ticks overlap at this size
+        axis.set_ticks([-1, 0, 1])
     ax.set_xlabel(r"$e_1$")
     ax.set_ylabel(r"$e_2$")
     ax.set_zlabel(r"$e_3$")
@@ -132,16 +151,16 @@ def sleigh_path(run):
     offset = run.plan.body.offset
     span = max(np.ptp(x), np.ptp(y))
     fig, ax = plt.subplots(figsize=(6.5, 6))
-    ax.plot(x, y, color="C0", lw=1.2, label="contact point")
+    ax.plot(x, y, color="C0", lw=1.2, label="path of the contact point")
     instants = np.linspace(0, len(x) - 1, 9).astype(int)
     blade = 0.025 * span
     for n, i in enumerate(instants):
         cos, sin = np.cos(theta[i]), np.sin(theta[i])
         ax.plot([x[i] - blade * cos, x[i] + blade * cos], [y[i] - blade * sin, y[i] + blade * sin], color="C3",
                 lw=3, solid_capstyle="butt", label="blade (equal time steps)" if n == 0 else None)
-        ax.plot([x[i], x[i] + offset * cos], [y[i], y[i] + offset * sin], color="0.3", lw=0.8)
-        ax.plot(x[i] + offset * cos, y[i] + offset * sin, "s", color="0.3", ms=4,
-                label="centre of mass (ahead of the blade)" if n == 0 else None)
+        # one artist per instant (arm and its end marker), so the legend entry shows both
+        ax.plot([x[i], x[i] + offset * cos], [y[i], y[i] + offset * sin], color="0.3", lw=0.8, marker="s", ms=4,
+                markevery=[1], label="centre of mass (ahead of the blade)" if n == 0 else None)
     # direction of motion: arrows beside the path (the contact point moves along the blade, sign of v)
     arrows = [i for i in instants[1:-1] if abs(v[i]) > 0.05 * np.max(np.abs(v))]   # none where the sleigh stops
     heading = np.sign(v[arrows])
@@ -161,7 +180,7 @@ def sleigh_path(run):
     ax.set_ylabel(r"$y$")
     turn = run.results["sleigh"]["turning_angle"]
     ax.set_title(_title(run) + rf": the blade turns by ${np.degrees(turn):.2f}^\circ$", fontsize=9)
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(fontsize=8, loc="best", handler_map={Quiver: _ArrowKey()})
     return fig
 
 
@@ -176,12 +195,13 @@ def figure(name, run):
 
 def draw(name, run, directory, formats=("png",)) -> list[str]:
     """Write figure ``name`` into ``directory`` in each format; returns the file names."""
-    fig = figure(name, run)
     written = []
-    try:
-        for fmt in formats:
-            fig.savefig(directory / f"{name}.{fmt}", dpi=110, metadata=METADATA[fmt])
-            written.append(f"{name}.{fmt}")
-    finally:
-        plt.close(fig)
+    with matplotlib.rc_context(RC):
+        fig = figure(name, run)
+        try:
+            for fmt in formats:
+                fig.savefig(directory / f"{name}.{fmt}", dpi=110, metadata=METADATA[fmt])
+                written.append(f"{name}.{fmt}")
+        finally:
+            plt.close(fig)
     return written
