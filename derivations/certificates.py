@@ -84,6 +84,7 @@ class CertificateLog:
     certificates: list[Certificate] = field(default_factory=list)
     derivation: str = ""
     on_record: object = None  # optional callback(Certificate) for progress display
+    on_phase: object = None   # optional callback(label, done, total, p) for per-p phases (progress display)
 
     def record(self, certificate: Certificate) -> Certificate:
         certificate.derivation = certificate.derivation or self.derivation
@@ -107,6 +108,21 @@ class CertificateLog:
 
     def total_seconds(self) -> float:
         return sum(c.seconds for c in self.certificates)
+
+    def per_p(self, label: str, values):
+        """Iterate over ``values`` (the p of a per-p phase), telling the progress display about each one.
+
+        The display (``on_phase(label, done, total, value)``) estimates the time left; the
+        certificates and every output are unaffected.
+        """
+        values = list(values)
+        report = getattr(self, "on_phase", None)
+        for done, value in enumerate(values):
+            if callable(report):
+                report(label, done, len(values), value)
+            yield value
+        if callable(report) and values:
+            report(label, len(values), len(values), values[-1])
 
 
 @contextmanager

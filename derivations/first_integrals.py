@@ -233,7 +233,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     QD = Domain("Q(d)[omega, gamma]")
     rows, forms, proofs, objects = [], {}, {}, {}
     refuted = {"p23": [], "pol_sol": []}
-    for p_value in options.odd_p_values():
+    for p_value in log.per_p("first integrals", options.odd_p_values()):
         field = {k: v.subs(p, p_value) for k, v in field_pd.items()}
         ff, certs = certify_p(log, p_value, field_pd)
         objects[p_value] = ff

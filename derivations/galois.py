@@ -289,7 +289,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
              for name in ("s1", "s2", "s3")}
     num_mip = [_mip(c) for c in sp.Poly(num_e, z).all_coeffs()[::-1]]
     flint_points = {"s1": I_, "s2": -I_, "s3": -I_ * M_}
-    for p_value in range(1, galois_pmax + 1):
+    for p_value in log.per_p("logarithms at s1..s4", range(1, galois_pmax + 1)):
         num_p = [c.compose(M_, I_, MI.constant(p_value), ctx=MI) for c in num_mip]
         verdict = {}
         with stopwatch() as elapsed:

@@ -472,7 +472,7 @@ def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
     rows = []
     compare_poly_f2(log, result, options)
     bases, objects = {}, {}
-    for p in options.odd_p_values():
+    for p in log.per_p("bases", options.odd_p_values()):
         c_f1 = genhip_check(log, p)
         basis = certify_p(log, p)
         objects[p] = (basis.real.M, basis.complex_.M)

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import filecmp
 import json
+import math
 import os
 import shutil
 import sys
@@ -67,30 +68,63 @@ class Build:
     round_trip_done: bool = False
 
 
+def time_left(elapsed: float, done: int, total: int, elapsed_at_half: float | None = None) -> float | None:
+    """Seconds left in a per-p phase, extrapolated with the growth of the cumulative time.
+
+    Per-p work grows like a power of p, so the cumulative time after i of n steps grows like
+    i^k; k is estimated from the time at i and at i/2 (k >= 1: never faster than linear),
+    and the remaining time is elapsed ((n/i)^k - 1).  None until there is enough to go on.
+    """
+    if done < 2 or elapsed <= 0:
+        return None
+    k = 1.0
+    if elapsed_at_half:
+        k = max(1.0, min(6.0, math.log(elapsed / elapsed_at_half) / math.log(done / (done // 2))))
+    return elapsed * ((total / done) ** k - 1.0)
+
+
 class Progress:
-    """One line per derivation; a live counter when stderr is a terminal."""
+    """One line per derivation; on a terminal also a live counter and, in per-p phases, the p reached
+    and an estimate of the time left (when stderr is not a terminal: only the line per derivation)."""
 
     def __init__(self, stream=sys.stderr, quiet: bool = False):
         self.stream, self.quiet = stream, quiet
         self.live = hasattr(stream, "isatty") and stream.isatty()
         self.count = 0
+        self.phase_text = ""
 
     def start(self, index: int, total: int, name: str):
         self.prefix, self.count, self.t0 = f"[{index}/{total}] {name}", 0, time.perf_counter()
+        self.phase_text, self.phase_start, self.phase_times = "", None, {}
         if not self.quiet and self.live:
             self.stream.write(f"{self.prefix} ...")
             self.stream.flush()
 
+    def _show(self):
+        if not self.quiet and self.live:
+            line = f"{self.prefix}: {self.count} certificates, {time.perf_counter() - self.t0:.1f} s{self.phase_text}"
+            self.stream.write("\r" + line.ljust(100)[:160])
+            self.stream.flush()
+
     def certificate(self, cert):
         self.count += 1
-        if not self.quiet and self.live:
-            self.stream.write(f"\r{self.prefix}: {self.count} certificates, {time.perf_counter() - self.t0:.1f} s")
-            self.stream.flush()
+        self._show()
+
+    def phase(self, label: str, done: int, total: int, value):
+        now = time.perf_counter()
+        if done == 0 or self.phase_start is None:
+            self.phase_start, self.phase_times = now, {}
+        elapsed = now - self.phase_start
+        self.phase_times[done] = elapsed
+        left = time_left(elapsed, done, total, self.phase_times.get(done // 2))
+        estimate = f", about {left:.0f} s left" if left is not None and done < total else ""
+        self.phase_text = f"; {label}: p = {value} ({done}/{total}){estimate}"
+        self._show()
 
     def done(self):
         if not self.quiet:
             line = f"{self.prefix}: {self.count} certificates, {time.perf_counter() - self.t0:.2f} s"
-            self.stream.write(("\r" if self.live else "") + line + "\n")
+            self.stream.write(("\r" + line.ljust(100)[:160].rstrip() if self.live else line) + "\n")
             self.stream.flush()
 
 
@@ -98,7 +132,7 @@ def derive(options: BuildOptions, only: list[str] | None = None, progress: Progr
     """Run and certify the derivations (raises CertificationFailure)."""
     names = resolve(only)
     progress = progress or Progress(quiet=True)
-    log = CertificateLog(on_record=progress.certificate)
+    log = CertificateLog(on_record=progress.certificate, on_phase=progress.phase)
     build = Build(options, names, log)
     for index, name in enumerate(names, 1):
         module = DERIVATIONS[name]

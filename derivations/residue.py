@@ -301,7 +301,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
 
     # logarithms per integer p
     log_rows = []
-    for p_value in options.p_values():
+    for p_value in log.per_p("Frobenius logarithms at t0", options.p_values()):
         with stopwatch() as elapsed:
             obstructions = frobenius_obstructions(p_value)
             nonzero = [(k, name, value) for k, name, value in obstructions if value != 0]
