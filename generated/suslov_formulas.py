@@ -156,7 +156,7 @@ def omega(t: ArrayLike, p: ArrayLike, d: ArrayLike) -> tuple[np.ndarray, np.ndar
 
     ``t``, ``p`` and ``d`` broadcast like NumPy arrays; returns two float64 arrays of the
     broadcast shape.  No overflow for any t.  Error bound (certified as numeric evidence
-    against :func:`omega_mp`): absolute 4e-16 (|p|/d) sqrt(d^2+1) per component.
+    against :func:`omega_mp`): absolute ``4e-16 (|p|/d) sqrt(d^2+1)`` per component.
 
     >>> w1, w2 = omega([0.0, 1.0], 3, [0.5, 2.0])
     >>> float(w1[0]), round(float(w1[1]), 12)   # (3/2) tanh 1
@@ -218,7 +218,7 @@ def omega_general(t: ArrayLike, I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, 
 
     Any other solution is lambda omega(lambda (t - t0)).  All arguments but ``branch``
     broadcast; returns two float64 arrays.  Error bound (evidence against the mpmath
-    twin): absolute 1e-15 B, B = (I11 I22 |I23| + I22 |I13| r + I11 I22 |I13| + I11 |I23| r)/D.
+    twin): absolute ``1e-15 B``, ``B = (I11 I22 |I23| + I22 |I13| r + I11 I22 |I13| + I11 |I23| r)/D``.
 
     >>> w1, w2 = omega_general(0.0, 2.0, 1.0, 0.3, 0.5)
     >>> round(float(w1), 12), round(float(w2), 12)   # (I22 I13, I11 I23) sqrt(2)/D at t = 0, D = 0.59
@@ -271,7 +271,7 @@ def first_integral_coefficients(p: int, d) -> dict:
 
     ``d`` is an int, a ``Fraction``, a float (its exact binary value) or a string such as
     ``"3/2"``.  Returns ``{"P1": [...], "P2": [...], "P3": [...]}`` with
-    ``P_i = sum_k a[k] omega1^(p-k) omega2^k`` and ``a[k]`` exact ``Fraction``s.
+    ``P_i = sum_k a[k] omega1^(p-k) omega2^k`` and ``a[k]`` exact fractions (``Fraction``).
     Normalisation (paper eq:p1): P1 = omega1 Q, Q = F1^((p-1)/2) F(omega2^2/F1), F(0) = 1,
     so P1 = omega1^p (d^2+1)^((p-1)/2) + ...; not rescaled.
 
@@ -306,9 +306,9 @@ def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, g
 
     ``d`` and the five state arguments broadcast; returns float64.  The coefficients are
     computed exactly from the float d and rounded once (cached per (p, d)); evaluated as
-    s^p sum_i P_i(omega/s) gamma_i with s = max(|omega1|, |omega2|) and Horner's rule in
+    ``s^p sum_i P_i(omega/s) gamma_i`` with ``s = max(|omega1|, |omega2|)`` and Horner's rule in
     the ratio of modulus <= 1 (``suslov.kernel.horner.combination``).  Error bound (evidence against :func:`first_integral_mp`):
-    absolute 2e-15 (p+1) s^p sum_i |gamma_i| sum_k |a_ik|.  Raises ValueError for even,
+    absolute ``2e-15 (p+1) s^p sum_i |gamma_i| sum_k |a_ik|``.  Raises ValueError for even,
     non-integer or uncertified p, d <= 0, non-finite input, and when s^p overflows float64
     (use :func:`first_integral_mp` then).
 
@@ -504,7 +504,7 @@ def gamma_basis(t: ArrayLike, p: int, d: ArrayLike) -> np.ndarray:
     singularity at t = 0); coefficients computed once per (p, d) with mpmath and cached.
     The phase (p/d) t is reduced in double-double arithmetic below 5.3e7 and with mpmath
     beyond, so no digits are lost for any t.  Error bound (evidence against
-    :func:`gamma_basis_mp`): absolute 1e-15 (p+1)^1.5 + 4e-16 |p t/d| + 2e-16 |t|.
+    :func:`gamma_basis_mp`): absolute ``1e-15 (p+1)^1.5 + 4e-16 |p t/d| + 2e-16 |t|``.
 
     >>> B = gamma_basis([-40.0, 0.0, 40.0], 3, 0.5)
     >>> [round(float(v), 12) for v in B[:, 0, 0]]
@@ -573,7 +573,7 @@ def scattering_angle(p: ArrayLike, d: ArrayLike) -> np.ndarray:
     angle scattering:238, route scattering:244, stable scattering:248.
 
     Evaluated as ``2 atan2(sqrt(tanh^2 x + s^2 sech^2 x), c sech x)`` with
-    ``x = pi |p|/(2d)`` and ``s``, ``c`` = |sin|, |cos| of ``pi p/2`` with p reduced
+    ``x = pi |p|/(2d)`` and ``s``, ``c`` = ``|sin|``, ``|cos|`` of ``pi p/2`` with p reduced
     exactly (``suslov.kernel.phase.half_pi_parts``): no arccos near 1, no overflow for
     small d, accurate for p within 1e-12 of an integer.  ``p``, ``d`` broadcast.  Error
     bound (evidence against :func:`scattering_angle_mp`): relative 1e-13.
@@ -704,7 +704,7 @@ def meromorphy(I: ArrayLike, tol: float = 1e-9) -> Meromorphy:
 
     Derived (and certified, with exact Frobenius recursions) for the equations of motion
     from d/dt(I w) = I w x w + lambda a: all solutions of the Poisson equations are
-    meromorphic iff I13 = 0 and p = sqrt(I22 (I11 - I22))/|I23| is an *odd* integer (I23 = 0
+    meromorphic iff I13 = 0 and ``p = sqrt(I22 (I11 - I22))/|I23|`` is an *odd* integer (I23 = 0
     gives p^2 <= 0 in this frame).  The paper's eq:necc1 differs by the factor (I11 I22)^2
     and admits even p, for which logarithms appear.
 

@@ -75,7 +75,7 @@ class Body:
         return float(0.5 * w @ self.tensor @ w)
 
     def limit_axis(self) -> np.ndarray:
-        """Unit vector u/|u| (paper frame): omega -> -lam u at t -> -oo and +lam u at +oo."""
+        """Unit vector ``u/|u|`` (paper frame): omega -> -lam u at t -> -oo and +lam u at +oo."""
         return np.array([*self.u / np.linalg.norm(self.u), 0.0])
 
     def describe(self) -> str:

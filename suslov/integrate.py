@@ -53,7 +53,7 @@ def _cross(g, w):
 
 
 def ss_series_value(u, v, s):
-    """The ss solution (gamma(-oo) = -u/|u|) at rate-1 time s <= -0.5 from its series in x = e^s."""
+    """The ss solution (``gamma(-oo) = -u/|u|``) at rate-1 time s <= -0.5 from its series in x = e^s."""
     if s > -0.5:
         raise ValueError(f"series start at s = {s}: needs s <= -0.5 for fast convergence")
     x = np.exp(s)
@@ -132,7 +132,7 @@ def numeric_angle(body, rtol=1e-12, atol=1e-14, horizon=40.0, method="DOP853"):
 
     cos(Delta psi) = -<gamma(+oo), n> with n the limit axis; the component along n converges
     like e^(-lam t) and the perpendicular part only rotates, so
-    Delta psi = atan2(|gamma_perp|, -<gamma, n>) at the horizon (no arccos near 1).
+    ``Delta psi = atan2(|gamma_perp|, -<gamma, n>)`` at the horizon (no arccos near 1).
     """
     t_start, g0 = ss_initial(body, SERIES_START / body.rate)
     t_eval = np.array([t_start, horizon / body.rate])

@@ -35,7 +35,7 @@ class FloatContext:
     def tanh_sech(t):
         """(tanh t, sech t), both to full relative accuracy, no overflow for any t.
 
-        With a = |t|, e = exp(-a) and m = expm1(-a) = e - 1 (each accurate to an ulp):
+        With ``a = |t|``, ``e = exp(-a)`` and ``m = expm1(-a) = e - 1`` (each accurate to an ulp):
         sech t = 2e/(1 + e^2) and tanh a = (1 - e)(1 + e)/(1 + e^2) = -m (1 + e)/(1 + e^2);
         no subtraction of nearly equal numbers anywhere (1 - e is m itself).  In-place
         array operations: cheaper than ``np.tanh`` plus a separate sech.

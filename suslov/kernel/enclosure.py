@@ -14,7 +14,7 @@ nor the angle).  ``omega(s) = u tanh s + v sech s`` (u, v: pairs of balls), ``n 
 
 The enclosure, in three rigorous pieces:
 
-1. **Limit series at -oo** (x = e^s, |x| < 1).  ``tanh s = (x^2-1)/(x^2+1)`` and ``sech s = 2x/(x^2+1)``
+1. **Limit series at -oo** (``x = e^s``, ``|x| < 1``).  ``tanh s = (x^2-1)/(x^2+1)`` and ``sech s = 2x/(x^2+1)``
    make ``x dgamma/dx = gamma x omega(x)`` with ``omega(x) = sum w_j x^j``, ``w_0 = -u``,
    ``w_2m = 2 (-1)^(m+1) u``, ``w_(2m+1) = 2 (-1)^m v``.  The ss solution is the exponent-0 series
    ``gamma = sum y_k x^k``, ``y_0 = -n``, ``(k - C(w_0)) y_k = sum_(j=1..k) C(w_j) y_(k-j)`` with
@@ -41,7 +41,7 @@ The enclosure, in three rigorous pieces:
    Two solutions keep their inner product (the flow is a rotation), so
    ``<gamma(+oo), n> = <gamma(s1), g(s1)>``: no integration to +oo.  The angle is
    ``Delta psi = arccos(-<gamma(s1), g(s1)>)``, evaluated as an arctangent (finite near cos = -1, where
-   odd p gives pi) and clipped to [0, pi] (|gamma| = |g| = 1 exactly).
+   odd p gives pi) and clipped to [0, pi] (``|gamma| = |g| = 1`` exactly).
 
 References for the method: Cauchy majorants for linear ODEs with analytic coefficients as in
 M. Mezzarobba, arXiv:1607.01967 (here in their simplest form: a bound of the coefficient matrix on a
@@ -111,7 +111,7 @@ def _norm_upper(values) -> arb:
 
 
 def _disc_bound(c: arb, u, v) -> arb:
-    """M >= ||A(c + tau)||_2 on the square |Re tau|, |Im tau| <= RHO (ball enclosures on sub-boxes)."""
+    """``M >= ||A(c + tau)||_2`` on the square ``|Re tau|, |Im tau| <= RHO`` (ball enclosures on sub-boxes)."""
     tanh_max = sech_max = arb(0)
     half = arb(RHO) / GRID
     for i in range(GRID):
@@ -159,7 +159,7 @@ def _step(y, c: arb, h: arb, u, v, order: int) -> list:
 
 
 def _limit_series(u, v, n, side: int, x: arb, budget: arb) -> tuple:
-    """The exponent-0 solution at s = side * oo, evaluated at x = e^(-|s|): (balls, remainder bound).
+    """The exponent-0 solution at s = side * oo, evaluated at ``x = e^(-|s|)``: (balls, remainder bound).
 
     side = -1: gamma with gamma(-oo) = -n; side = +1: g with g(+oo) = n (module docstring, 1 and 3).
     Terms are added until the remainder bound is below ``budget``.

@@ -2,7 +2,7 @@
 
 ``P(w1, w2) = sum_k a[k] w1^(n-k) w2^k`` is evaluated as ``s^n P(w1/s, w2/s)`` with
 ``s = max(|w1|, |w2|)`` and Horner's rule in the ratio of modulus <= 1 (in w2/w1 where
-|w1| >= |w2|, in w1/w2 elsewhere): every power stays bounded, so no intermediate
+``|w1| >= |w2|``, in w1/w2 elsewhere): every power stays bounded, so no intermediate
 overflow and no growth of rounding errors with n beyond Horner's usual n u bound.
 """
 from __future__ import annotations
@@ -13,14 +13,14 @@ __all__ = ["horner_homogeneous", "scaled_unit"]
 
 
 def scaled_unit(w1, w2):
-    """(s, u1, u2) with s = max(|w1|, |w2|) (1 where both vanish) and u = w / s."""
+    """``(s, u1, u2)`` with ``s = max(|w1|, |w2|)`` (1 where both vanish) and ``u = w / s``."""
     s = np.maximum(np.abs(w1), np.abs(w2))
     safe = np.where(s > 0, s, 1.0)
     return s, w1 / safe, w2 / safe
 
 
 def horner_homogeneous(a, u1, u2):
-    """sum a[k] u1^(n-k) u2^k for max(|u1|, |u2|) = 1 (or 0), Horner in the smaller ratio.
+    """``sum a[k] u1^(n-k) u2^k`` for ``max(|u1|, |u2|) = 1`` (or 0), Horner in the smaller ratio.
 
     >>> float(horner_homogeneous([1.0, 2.0, 3.0], np.float64(1.0), np.float64(0.5)))  # 1 + 2*0.5 + 3*0.25
     2.75
@@ -40,11 +40,11 @@ def horner_homogeneous(a, u1, u2):
 
 def combination(coefficients: np.ndarray, w1: np.ndarray, w2: np.ndarray, g: np.ndarray,
                 block: int = 8192) -> np.ndarray:
-    """sum_i g_i P_i(w1, w2) / s^n for homogeneous P_i of odd degree n, s = max(|w1|, |w2|).
+    """``sum_i g_i P_i(w1, w2) / s^n`` for homogeneous P_i of odd degree n, ``s = max(|w1|, |w2|)``.
 
     ``coefficients`` is (m, n+1) (row i: a_ik of w1^(n-k) w2^k), ``g`` is (m, N), ``w1``, ``w2``
     are (N,).  The combination c_k = sum_i a_ik g_i is formed first (one matrix product),
-    then one Horner pass in the ratio r of modulus <= 1: c_k r^k where |w1| >= |w2|, the
+    then one Horner pass in the ratio r of modulus <= 1: c_k r^k where ``|w1| >= |w2|``, the
     reversed c_(n-k) r^k elsewhere; the factor u_max^n = sign^n (u_max = +-1 exactly, n odd)
     is a sign.  Points with w1 = w2 = 0 give 0.
 

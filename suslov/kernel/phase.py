@@ -1,17 +1,17 @@
 """Exact argument reductions: the phase (p/d) t, the angle variable th, and pi p/2.
 
-* :func:`theta`: th = 2 arctan(e^-t) in (0, pi), so that tanh t = cos th and
-  sech t = sin th without overflow for any t.
+* :func:`theta`: ``th = 2 arctan(e^-t)`` in (0, pi), so that ``tanh t = cos th`` and
+  ``sech t = sin th`` without overflow for any t.
 * :func:`phase_cos_sin`: cos and sin of (p/d) t in double-double arithmetic (then one tangent of
   the half angle gives both).  The plain
   product carries the rounding of p/d and of the product, an absolute phase error of
-  about 1e-16 (p/d)|t|.  Here p/d = q + r/d with r = p - q d exact (Dekker's two-product),
+  about ``1e-16 (p/d)|t|``.  Here p/d = q + r/d with r = p - q d exact (Dekker's two-product),
   q t = h + l exactly, and the reduction modulo 2 pi subtracts k (C1 + C2 + C3) with
-  C1, C2 of 30 significant bits, so k C1 and k C2 are exact for |k| < 2^23 (Cody and
-  Waite).  Valid for |phase| < :data:`PHASE_LIMIT` = 2^23 * 2 pi (5.3e7); callers warn or
+  C1, C2 of 30 significant bits, so k C1 and k C2 are exact for ``|k| < 2^23`` (Cody and
+  Waite).  Valid for ``|phase| <`` :data:`PHASE_LIMIT` ``= 2^23 * 2 pi`` (5.3e7); callers warn or
   switch to mpmath beyond.
-* :func:`half_pi_parts`: |sin(pi p/2)|, |cos(pi p/2)| with p reduced modulo 2 exactly
-  (r = |p - 2 round(p/2)| is exact in floating point); near an odd integer the cosine is
+* :func:`half_pi_parts`: ``|sin(pi p/2)|``, ``|cos(pi p/2)|`` with p reduced modulo 2 exactly
+  (``r = |p - 2 round(p/2)|`` is exact in floating point); near an odd integer the cosine is
   sin(pi (1 - r)/2), whose argument 1 - r is exact for r >= 1/2 (Sterbenz), so p within
   1e-12 of an integer keeps full relative accuracy.
 """
@@ -52,7 +52,7 @@ def two_prod(a, b):
 
 
 def phase_cos_sin(p, d, t):
-    """cos and sin of (p/d) t (arrays broadcast), accurate to ~1e-16 absolute for |phase| < PHASE_LIMIT."""
+    """cos and sin of (p/d) t (arrays broadcast), accurate to ~1e-16 absolute for ``|phase| < PHASE_LIMIT``."""
     t = np.asarray(t, dtype=float)
     p = np.asarray(p, dtype=float)
     d = np.asarray(d, dtype=float)
@@ -111,7 +111,7 @@ def _phase_scalar_parameters(q: float, rd: float, t: np.ndarray):
 
 
 def half_pi_parts(p):
-    """(|sin(pi p/2)|, |cos(pi p/2)|) in float64 with p reduced modulo 2 exactly."""
+    """``(|sin(pi p/2)|, |cos(pi p/2)|)`` in float64 with p reduced modulo 2 exactly."""
     p = np.asarray(p, dtype=float)
     r = np.abs(p - 2.0 * np.round(p / 2.0))
     s = np.sin(0.5 * np.pi * r)

@@ -3,7 +3,7 @@
 With cos th = tanh t and sin th = sech t, the point z = e^{i th} = tanh t + i sech t is on
 the unit circle, and ``sum_k alpha_k cos k th + beta_k sin k th = Re sum_k (alpha_k - i
 beta_k) z^k``.  The powers z^k are formed by repeated complex multiplication (each step
-adds about one rounding error of relative size u, since |z| = 1: k u after k steps, not the
+adds about one rounding error of relative size u, since ``|z| = 1``: k u after k steps, not the
 k^2 u of the three-term Chebyshev recurrence), stacked as a real matrix [Re z^k; Im z^k],
 and all series are evaluated at once by one matrix product (BLAS).  Points are processed in
 blocks so the power matrix stays in cache.
