@@ -165,3 +165,58 @@ def test_bad_input_is_named():
         sf.scattering_angle_ball(2, 0)
     u, v = omega_coefficients("5/4", 1, "3/10", "-1/2")
     assert all(x.is_finite() for x in (*u, *v))
+
+
+def gamma_basis_ball(t, p, d, bits=256):
+    """Balls containing the rows of the certified basis at (t, p, d): the shared recipe on python-flint
+    balls (AcbBasisRing), its Fourier form, and the trigonometric series and phase evaluated in arb at the
+    exact binary t and d (gamma_basis_mp's formula, no float step anywhere)."""
+    from flint import acb
+    from suslov.kernel import fourier
+    from suslov.recipes.rings import AcbBasisRing
+
+    saved = ctx.prec
+    ctx.prec = bits
+    try:
+        ring = AcbBasisRing(d)
+        c = (ring.d**2 + 1).sqrt()
+        real, cplx = sf._basis_core(p, ring)
+        real_lists = [m.coeffs() for m in real.M]
+        complex_lists = [m.coeffs() for m in cplx.M]
+        s, k = -real_lists[0][0], complex_lists[1][0]
+        rows = [[v / (f * s) for v in comp] for comp, f in zip(real_lists, (1, c, c))]
+        rows += [[f * v / k for v in comp] for comp, f in zip(complex_lists, (c, 1, 1))]
+        alpha, beta = fourier.to_fourier_acb(rows, p)
+        T = to_arb("t", t)
+        theta = 2 * (-T).exp().atan()
+        phase = p * T / to_arb("d", d)
+        cphi, sphi = phase.cos(), phase.sin()
+
+        def series(index):
+            return sum((alpha[index, j] * (j * theta).cos() + beta[index, j] * (j * theta).sin()
+                        for j in range(p + 1)), acb(0))
+
+        sigma = sf._BASIS_SIGMA[p]
+        out = [[None] * 3 for _ in range(3)]
+        for j in range(3):
+            out[0][j] = series(j).real
+            z = series(3 + j)
+            out[1][j] = cphi * z.real - sphi * z.imag
+            out[2][j] = -sigma * (sphi * z.real + cphi * z.imag)
+        return out
+    finally:
+        ctx.prec = saved
+
+
+@pytest.mark.parametrize("t,p,d", [(0.3, 1, 0.5), (-7.25, 3, 0.5), (2.0, 5, 1.7), (40.0, 7, 0.05), (-1e3, 3, 2.0),
+                                   (0.0, 15, 0.2), (123.456, 9, 3.0)])
+def test_float_gamma_basis_inside_the_ball_widened_by_its_bound(t, p, d):
+    """gamma_basis (float64) inside the ball of the certified basis widened by the docstring's bound
+    1e-15 (p+1)^1.5 + 4e-16 |p t/d| + 2e-16 |t|."""
+    balls = gamma_basis_ball(t, p, d)
+    value = sf.gamma_basis(t, p, d)
+    bound = 1e-15 * (p + 1) ** 1.5 + 4e-16 * abs(p * t / d) + 2e-16 * abs(t)
+    for i in range(3):
+        for j in range(3):
+            assert float(balls[i][j].rad()) < 1e-30
+            assert abs(float(value[i, j]) - float(balls[i][j].mid())) <= bound, (i, j)
