@@ -12,7 +12,10 @@ records (DESIGN.md, "Certification").  A certificate names
 * the outcome: ``pass``, ``fail`` or ``unknown``,
 * the cost in seconds (wall clock; volatile, so it is kept out of the
   byte-identical outputs, see ``derivations.pipeline``),
-* a deterministic work measure (terms tested, points sampled) and a detail.
+* a deterministic work measure (terms tested, points sampled) and a detail,
+* for floating-point evidence, the measured value (``measured``: worst error over bound, say),
+  volatile like the cost: NumPy's float64 kernels differ in the last bits between CPUs (AVX2
+  and AVX-512 dispatch), so the value goes to ``certificate_measurements.json`` only.
 
 Claims about the *paper's printed* forms that turn out false are not build
 failures: they are recorded with ``expect=False`` and reported as errata.  A
@@ -49,6 +52,7 @@ class Certificate:
     derivation: str = ""
     expected: Outcome = Outcome.PASS
     key: str = ""
+    measured: str = ""
 
     @property
     def as_expected(self) -> bool:
@@ -56,9 +60,10 @@ class Certificate:
         return self.outcome == self.expected
 
     def deterministic_record(self) -> dict:
-        """The fields that are identical across builds (no timing)."""
+        """The fields that are identical across builds and machines (no timing, no float measurement)."""
         record = asdict(self)
         record.pop("seconds")
+        record.pop("measured")
         record["outcome"] = self.outcome.value
         record["expected"] = self.expected.value
         return record

@@ -32,8 +32,10 @@ BASIS_MP_CHECK_MAX = 15  # the SymPy lambdify of the certified numerators is slo
 
 
 def _record(log, claim, ok, seconds, points, worst, method=METHOD):
+    # the worst ratio itself is CPU-dependent in its last digits: recorded as a volatile measurement
     return log.record(Certificate(claim, "round trip", method, Outcome.PASS if ok else Outcome.FAIL, seconds, points,
-                                  f"{points} points; worst error / bound = {worst:.3g}"))
+                                  f"{points} points; worst error / bound {'<=' if ok else '>'} 1",
+                                  measured=f"worst error / bound = {worst:.3g}"))
 
 
 def _ratio(error, bound) -> float:

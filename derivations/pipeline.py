@@ -11,9 +11,10 @@ tree or the complete new one, never a mixture.
 
 Determinism: the committed outputs carry no timing, no timestamp and no
 absolute path.  The cost of each certificate (seconds) is volatile and goes
-into ``certificate_costs.json`` / ``certificate_costs.tex`` only; those two
-files are ignored by git, by ``--check`` and by the reproducibility test, and
-the LaTeX document includes the cost table when it is present.
+into ``certificate_costs.json`` / ``certificate_costs.tex`` only, and the measured values
+of floating-point evidence (CPU-dependent in their last digits) into
+``certificate_measurements.json``; those files are ignored by git, by ``--check`` and by the
+reproducibility test, and the LaTeX document includes the cost table when it is present.
 """
 from __future__ import annotations
 
@@ -36,7 +37,7 @@ from .render import render
 
 ROOT = Path(__file__).resolve().parent.parent
 GENERATED = ROOT / "generated"
-VOLATILE = ("certificate_costs.json", "certificate_costs.tex")
+VOLATILE = ("certificate_costs.json", "certificate_costs.tex", "certificate_measurements.json")
 
 # the derivations the generated module's formulas come from (and --verify runs)
 MODULE_NEEDS = ("model", "special_case", "kovalevskaya", "meromorphic", "first_integrals", "scattering")
@@ -221,7 +222,10 @@ def render_into(build: Build, directory: Path) -> list[str]:
     (directory / "certificate_costs.json").write_text(
         json.dumps({k: round(s, 6) for k, _, s in ctx["costs"]}, indent=1, sort_keys=True) + "\n",
         encoding="utf-8")
-    return written + ["certificates.json", "certificate_costs.json"]
+    (directory / "certificate_measurements.json").write_text(
+        json.dumps({c.key: c.measured for c in build.log.certificates if c.measured}, indent=1, sort_keys=True)
+        + "\n", encoding="utf-8")
+    return written + ["certificates.json", "certificate_costs.json", "certificate_measurements.json"]
 
 
 def write_atomically(build: Build, target: Path) -> None:
