@@ -22,7 +22,6 @@ import logging
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 log = logging.getLogger(__name__)
 
@@ -103,6 +102,8 @@ def solve_poisson(body, t_eval, initial, rtol=1e-10, atol=1e-12, method="DOP853"
     def rhs(t, y):
         w = body.omega(np.asarray(t))
         return _cross(y.reshape(k, 3), w).ravel()
+
+    from scipy.integrate import solve_ivp  # SciPy only when this route runs (sweep workers start faster)
 
     def run(tol_r, tol_a):
         sol = solve_ivp(rhs, (t0, float(t_eval[-1])), initial.ravel(), method=method, t_eval=t_eval,

@@ -24,7 +24,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 
 @dataclass(frozen=True)
@@ -64,6 +63,8 @@ class Sleigh:
 
     def contact_point(self, t, rtol=1e-11, atol=1e-12):
         """(x, y) of the contact point at times t, starting at the origin at t[0]."""
+        from scipy.integrate import solve_ivp  # SciPy only when a path is asked for
+
         t = np.asarray(t, dtype=float)
 
         def rhs(time, y):
