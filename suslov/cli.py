@@ -1,4 +1,9 @@
-"""Command line: ``suslov simulate SCENE.toml --out DIR [--explain]`` (also ``python -m suslov``).
+"""Command line: ``suslov simulate SCENE.toml --out DIR [--explain] [--workers N] [--scheduler ADDRESS]``.
+
+Also ``python -m suslov``.  A sweep scene (``[sweep]``) runs its points in chunks on local
+processes (``--workers``, default all cores) or on a dask.distributed cluster (``--scheduler
+tcp://host:port``, or the environment variable ``SUSLOV_SCHEDULER``); an interrupted sweep
+resumes from its finished chunks.
 
 Exit codes: 0 success, 2 bad input (scene file, output directory), 1 a
 computation failed.  Errors are one line naming the file, the field and the
@@ -8,10 +13,13 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from .engine import execute, write_outputs
+from .executor import SCHEDULER_ENV, SchedulerError, scheduler_address
 from .planner import make_plan
 from .scene import SceneError, load_scene
+from .sweep import chunk_dir, plan_sweep, run_sweep
 
 
 def main(argv=None) -> int:
@@ -22,10 +30,17 @@ def main(argv=None) -> int:
     sim.add_argument("--out", help="output directory (required unless --explain)")
     sim.add_argument("--explain", action="store_true", help="print the plan and exit without computing")
     sim.add_argument("--quiet", action="store_true", help="no progress lines")
+    sim.add_argument("--workers", type=int, help="sweeps: local worker processes (default: all cores)")
+    sim.add_argument("--scheduler", help=f"sweeps: dask.distributed scheduler address (default: ${SCHEDULER_ENV})")
     args = parser.parse_args(argv)
+    if args.workers is not None and args.workers < 1:
+        print(f"suslov: error: --workers {args.workers}: must be at least 1", file=sys.stderr)
+        return 2
     progress = None if args.quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))
     try:
         scene = load_scene(args.scene)
+        if scene.is_sweep:
+            return _sweep(scene, args, progress)
         try:
             plan = make_plan(scene)
         except ValueError as exc:
@@ -50,6 +65,31 @@ def main(argv=None) -> int:
         return 1
     if progress:
         progress(f"wrote {len(files)} files to {args.out}")
+    return 0
+
+
+def _sweep(scene, args, progress) -> int:
+    scheduler = scheduler_address(args.scheduler)
+    if args.explain:
+        print(plan_sweep(scene, args.workers, scheduler).explain())
+        return 0
+    if not args.out:
+        print("suslov: error: --out DIR is required (or --explain)", file=sys.stderr)
+        return 2
+    try:
+        _, _, seconds, _ = run_sweep(scene, args.out, scheduler=scheduler, workers=args.workers, progress=progress)
+    except (FileExistsError, SchedulerError) as exc:
+        print(f"suslov: error: {exc}", file=sys.stderr)
+        return 2
+    except (RuntimeError, ArithmeticError, ValueError) as exc:
+        print(f"suslov: error: sweep {scene.path}: computation failed: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print(f"suslov: interrupted: finished chunks are kept in {chunk_dir(Path(args.out))}; "
+              "run the same command again to resume", file=sys.stderr)
+        return 130
+    if progress:
+        progress(f"sweep of {len(scene.sweep)} points done in {seconds:.1f} s; wrote {args.out}")
     return 0
 
 

@@ -2,16 +2,13 @@
 
 Each step is a function of the plan and the data computed so far; the engine
 records what ran (name, method, seconds) in ``Run.executed``, which the report
-and the tests read.  Outputs (CSV, JSON, PNG, ``report.md``) are written into a
-staging directory beside ``--out`` and moved into place only when everything
-succeeded, so a failed run leaves the output directory as it was.
+and the tests read.  Outputs (CSV, JSON, PNG, ``report.md``) are written atomically
+(:func:`suslov.outputs.staged`), so a failed run leaves the output directory as it was.
 """
 from __future__ import annotations
 
 import json
 import logging
-import shutil
-import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,10 +18,10 @@ import numpy as np
 from generated import suslov_formulas as gf
 
 from . import integrate
+from .outputs import REPORT, staged
 from .planner import Plan
 
 log = logging.getLogger(__name__)
-REPORT = "report.md"
 
 
 @dataclass
@@ -73,7 +70,7 @@ def step_gamma_integrate(run: Run):
     t_start = None
     if g0 is None:
         t_start, g0 = integrate.ss_initial(body, t[0])
-    sol = integrate.solve_poisson(body, t, g0, scene.rtol, scene.atol, scene.method, t_start=t_start)
+    sol = solve(scene, body, t, g0, t_start)
     run.data["t"] = t
     run.data["gamma"] = body.to_scene(sol.values[:, 0, :])
     run.results["gamma"] = sol.summary() | {"start": "ss series" if t_start is not None else "gamma0"}
@@ -88,8 +85,7 @@ def step_orientation_closed_form(run: Run):
 def step_orientation_integrate(run: Run):
     scene, body = run.plan.scene, run.plan.body
     t = scene.times()
-    sol = integrate.solve_poisson(body, t, body.to_paper(np.eye(3)), scene.rtol, scene.atol,
-                                  scene.method)
+    sol = solve(scene, body, t, body.to_paper(np.eye(3)))
     run.data["orientation"] = body.to_scene(sol.values)
     run.results["orientation"] = sol.summary() | {"start": "identity at t0"}
 
@@ -117,19 +113,37 @@ def step_angle_closed_form(run: Run):
 
 
 def step_angle_enclosure(run: Run):
-    from .validated import scattering_angle_enclosure   # python-flint balls only when asked for
+    from .validated import scattering_angle_enclosure  # python-flint balls only when asked for
 
     enclosure = scattering_angle_enclosure(*run.plan.body.entries, digits=20)
     run.results["scattering_angle_enclosure"] = {
-        "ball": enclosure.angle.str(25), "midpoint": float(enclosure.angle.mid()), "radius": float(enclosure.angle.rad()),
+        "ball": enclosure.angle.str(25), "midpoint": float(enclosure.angle.mid()),
+        "radius": float(enclosure.angle.rad()),
         "method": "validated integration (limit series + Taylor steps, ball arithmetic), rigorous",
         "entries_paper_frame": [float(x) for x in run.plan.body.entries]}
 
 
 def step_angle_integrate(run: Run):
-    angle, error, sol = integrate.numeric_angle(run.plan.body)
+    angle, error, sol = numeric_angle(run.plan.scene, run.plan.body)
     run.results["scattering_angle"] = {"radians": angle, "error_estimate": error,
                                        "method": "numerical: ss integrated to lam t = 40"} | sol.summary()
+
+
+def solve(scene, body, t, initial, t_start=None):
+    """The scene's integrator: heyoka's Taylor method (``taylor``) or SciPy (``scipy:NAME``)."""
+    if scene.method == "taylor":
+        from . import taylor  # LLVM compilation only when a Taylor integration is planned
+        return taylor.solve_poisson_taylor(body, t, initial, tol=scene.rtol, t_start=t_start)
+    return integrate.solve_poisson(body, t, initial, scene.rtol, scene.atol, scene.method.split(":", 1)[1],
+                                   t_start=t_start)
+
+
+def numeric_angle(scene, body):
+    """(angle, error estimate, Integration) of a general body with the scene's integrator family."""
+    if scene.method == "taylor":
+        from . import taylor
+        return taylor.taylor_angle(body, tol=1e-12)
+    return integrate.numeric_angle(body)
 
 
 def step_sleigh_velocities(run: Run):
@@ -141,8 +155,6 @@ def step_sleigh_velocities(run: Run):
 
 
 def step_sleigh_path(run: Run):
-    if "sleigh" not in run.data:
-        step_sleigh_velocities(run)
     x, y, nfev = run.plan.body.contact_point(run.data["t"])
     run.data["sleigh"].update(x=x, y=y)
     run.results["sleigh"] = {"turning_angle": run.plan.body.turning_angle(), "rate": run.plan.body.rate,
@@ -219,13 +231,7 @@ def _report(run: Run, files: list[str]) -> str:
 
 def write_outputs(run: Run, out, progress=None) -> list[str]:
     """Write data, figures, results.json and report.md into ``out`` atomically."""
-    out = Path(out)
-    if out.exists() and (not out.is_dir() or (any(out.iterdir()) and not (out / REPORT).exists())):
-        raise FileExistsError(f"{out}: exists and is not an empty directory or a previous suslov output "
-                              f"(no {REPORT}); refusing to overwrite")
-    out.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
-    try:
+    with staged(out) as staging:
         files = _data_files(run, staging)
         from . import figures  # matplotlib only when a figure is drawn
         for step in run.plan.steps:
@@ -243,10 +249,4 @@ def write_outputs(run: Run, out, progress=None) -> list[str]:
              "steps": [e["step"] for e in run.executed]}, indent=1, sort_keys=True) + "\n", encoding="utf-8")
         files.append("results.json")
         (staging / REPORT).write_text(_report(run, files), encoding="utf-8")
-        if out.exists():
-            shutil.rmtree(out)
-        staging.rename(out)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise
     return files

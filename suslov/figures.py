@@ -16,6 +16,8 @@ PDF), with the metadata that would change between runs removed so outputs are by
 """
 from __future__ import annotations
 
+from pathlib import Path
+
 import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
@@ -193,15 +195,21 @@ def figure(name, run):
     return DRAW[name](run)
 
 
-def draw(name, run, directory, formats=("png",)) -> list[str]:
-    """Write figure ``name`` into ``directory`` in each format; returns the file names."""
+def save_formats(fig, stem, formats=("png",)) -> list[str]:
+    """Save ``fig`` as ``stem.<fmt>`` for each format, reproducibly; returns the file names."""
     written = []
     with matplotlib.rc_context(RC):
-        fig = figure(name, run)
-        try:
-            for fmt in formats:
-                fig.savefig(directory / f"{name}.{fmt}", dpi=110, metadata=METADATA[fmt])
-                written.append(f"{name}.{fmt}")
-        finally:
-            plt.close(fig)
+        for fmt in formats:
+            fig.savefig(f"{stem}.{fmt}", dpi=110, metadata=METADATA[fmt])
+            written.append(f"{Path(stem).name}.{fmt}")
     return written
+
+
+def draw(name, run, directory, formats=("png",)) -> list[str]:
+    """Write figure ``name`` into ``directory`` in each format; returns the file names."""
+    with matplotlib.rc_context(RC):
+        fig = figure(name, run)
+    try:
+        return save_formats(fig, Path(directory) / name, formats)
+    finally:
+        plt.close(fig)

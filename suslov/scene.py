@@ -26,9 +26,16 @@ A scene is declarative: it names the effects wanted, never the method.  Schema::
     figures_format = ["png", "pdf"]        # optional, default ["png"]; also "svg"
 
     [numerics]                             # optional
-    rtol = 1e-10
-    atol = 1e-12
-    method = "DOP853"                      # RK45, DOP853, Radau, LSODA
+    rtol = 1e-10                           # the Taylor integrator's tolerance, or SciPy's rtol
+    atol = 1e-12                           # SciPy only
+    method = "taylor"                      # heyoka's Taylor integrator (default); SciPy as cross-check:
+                                           # "scipy:DOP853", "scipy:RK45", "scipy:Radau", "scipy:LSODA"
+                                           # (a bare "DOP853" means "scipy:DOP853")
+
+A *sweep scene* has a ``[sweep]`` table instead of ``[body]`` (schema: :mod:`suslov.sweep_spec`):
+many bodies, scalar effects only (``SWEEP_EFFECTS``), one row per point in ``results.csv``, and
+the figures ``map`` (a scalar effect over the sweep's two varying fields) or ``histogram``.
+``[motion]`` is optional there (energies are a sweep field).
 
 Every error names the file, the field and the reason (:class:`SceneError`).
 """
@@ -43,6 +50,8 @@ import numpy as np
 
 from generated.suslov_formulas import canonical_frame
 
+from .sweep_spec import parse_sweep
+
 EFFECTS = ("omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_enclosure",
            "contact_point")
 FIGURES = {  # figure -> effect it draws
@@ -53,7 +62,10 @@ FIGURES = {  # figure -> effect it draws
     "sleigh_path": "contact_point",
 }
 SLEIGH_EFFECTS = ("omega", "contact_point")
-METHODS = ("RK45", "DOP853", "Radau", "LSODA")
+SWEEP_EFFECTS = ("scattering_angle", "scattering_angle_enclosure")
+SWEEP_FIGURES = ("map", "histogram")
+SCIPY_METHODS = ("RK45", "DOP853", "Radau", "LSODA")
+METHODS = ("taylor", *(f"scipy:{m}" for m in SCIPY_METHODS))
 MAX_SAMPLES = 1_000_000
 FIGURE_FORMATS = ("png", "pdf", "svg")
 
@@ -81,9 +93,14 @@ class Scene:
     figures: list = field(default_factory=list)
     rtol: float = 1e-10
     atol: float = 1e-12
-    method: str = "DOP853"
+    method: str = "taylor"
     title: str = ""
     figures_format: tuple = ("png",)
+    sweep: object = None           # a suslov.sweep_spec.Sweep for a sweep scene
+
+    @property
+    def is_sweep(self) -> bool:
+        return self.sweep is not None
 
     @property
     def is_sleigh(self) -> bool:
@@ -107,7 +124,7 @@ def _number(path, name, value, *, positive=False, allow_zero=True):
 def _table(path, data, name, allowed):
     table = data.get(name, {})
     if not isinstance(table, dict):
-        raise SceneError(path, name, "must be a table ([%s])" % name)
+        raise SceneError(path, name, f"must be a table ([{name}])")
     unknown = sorted(set(table) - set(allowed))
     if unknown:
         raise SceneError(path, f"{name}.{unknown[0]}", f"unknown field; allowed: {', '.join(allowed)}")
@@ -146,28 +163,9 @@ def _body(path, table):
             "d": _number(path, "body.d", table["d"], positive=True, allow_zero=False)}
 
 
-def load_scene(path) -> Scene:
-    """Parse and validate a scene file; raises :class:`SceneError`."""
-    path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise SceneError(path, "file", "not found") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise SceneError(path, "file", f"not valid TOML ({exc})") from None
-    top = sorted(set(data) - {"name", "title", "description", "body", "motion", "effects", "numerics"})
-    if top:
-        raise SceneError(path, top[0], "unknown field; allowed: name, title, description, [body], [motion], "
-                         "[effects], [numerics]")
-    for key in ("name", "title", "description"):
-        if key in data and not isinstance(data[key], str):
-            raise SceneError(path, key, "must be a string")
-    body = _body(path, _table(path, data, "body", ("kind", "inertia", "p", "d", "mass", "offset")))
-    motion = _table(path, data, "motion", ("time", "samples", "energy", "initial", "gamma0", "speed"))
-    effects = _table(path, data, "effects", ("compute", "figures", "figures_format"))
-    numerics = _table(path, data, "numerics", ("rtol", "atol", "method"))
-
-    window = motion.get("time")
+def _motion(path, motion, sweep):
+    """(time window, samples, energy, initial, speed); a sweep's motion is optional."""
+    window = motion.get("time", [-1.0, 1.0] if sweep else None)
     if not isinstance(window, list) or len(window) != 2:
         raise SceneError(path, "motion.time", "must be [t0, t1]")
     t0, t1 = (_number(path, f"motion.time[{i}]", window[i]) for i in range(2))
@@ -178,6 +176,8 @@ def load_scene(path) -> Scene:
         raise SceneError(path, "motion.samples", f"{samples!r}: must be an integer in [2, {MAX_SAMPLES}]")
     energy = motion.get("energy")
     if energy is not None:
+        if sweep:
+            raise SceneError(path, "motion.energy", "a sweep takes its energies from sweep.energy")
         energy = _number(path, "motion.energy", energy, positive=True, allow_zero=False)
     speed = _number(path, "motion.speed", motion.get("speed", 1.0), positive=True, allow_zero=False)
     if "gamma0" in motion and "initial" in motion:
@@ -193,15 +193,21 @@ def load_scene(path) -> Scene:
         initial = motion.get("initial", "ss")
         if initial != "ss":
             raise SceneError(path, "motion.initial", f"{initial!r}: the only named condition is \"ss\"")
+    return (t0, t1), samples, energy, initial, speed
 
+
+def _effects(path, effects, body, sweep):
+    """(compute, figures, formats) checked against what the body (or sweep) supports."""
     compute = effects.get("compute", [])
     figures = effects.get("figures", [])
-    for key, values, known in (("effects.compute", compute, EFFECTS), ("effects.figures", figures, tuple(FIGURES))):
+    known_figures = SWEEP_FIGURES if sweep else tuple(FIGURES)
+    for key, values, known in (("effects.compute", compute, EFFECTS), ("effects.figures", figures, known_figures)):
         if not isinstance(values, list) or not all(isinstance(v, str) for v in values):
             raise SceneError(path, key, "must be a list of names")
         for v in values:
             if v not in known:
-                raise SceneError(path, key, f"unknown effect {v!r}; known: {', '.join(known)}")
+                raise SceneError(path, key, f"unknown {'figure' if 'fig' in key else 'effect'} {v!r}; "
+                                 f"known: {', '.join(known)}")
     if not compute and not figures:
         raise SceneError(path, "effects", "nothing requested: give effects.compute and/or effects.figures")
     formats = effects.get("figures_format", ["png"])
@@ -209,7 +215,16 @@ def load_scene(path) -> Scene:
         raise SceneError(path, "effects.figures_format", f"{formats!r}: must be a non-empty list of format names")
     for f in formats:
         if f not in FIGURE_FORMATS:
-            raise SceneError(path, "effects.figures_format", f"unknown format {f!r}; known: {', '.join(FIGURE_FORMATS)}")
+            raise SceneError(path, "effects.figures_format",
+                             f"unknown format {f!r}; known: {', '.join(FIGURE_FORMATS)}")
+    if sweep:
+        bad = [e for e in compute if e not in SWEEP_EFFECTS]
+        if bad:
+            raise SceneError(path, "effects.compute", f"{bad[0]!r} is not a scalar effect; a sweep computes "
+                             f"{', '.join(SWEEP_EFFECTS)}")
+        if figures and not compute:
+            raise SceneError(path, "effects.figures", "a sweep figure draws a computed effect: list it in compute")
+        return compute, figures, formats
     wanted = set(compute) | {FIGURES[f] for f in figures}
     if body["kind"] == "sleigh":
         bad = sorted(wanted - set(SLEIGH_EFFECTS))
@@ -218,14 +233,47 @@ def load_scene(path) -> Scene:
                              f"{', '.join(SLEIGH_EFFECTS)})")
     elif "contact_point" in wanted:
         raise SceneError(path, "effects", "'contact_point' needs a sleigh body (body.kind = \"sleigh\")")
+    return compute, figures, formats
 
+
+def _numerics(path, numerics):
     rtol = _number(path, "numerics.rtol", numerics.get("rtol", 1e-10), positive=True, allow_zero=False)
     atol = _number(path, "numerics.atol", numerics.get("atol", 1e-12), positive=True, allow_zero=False)
     if not 1e-14 <= rtol <= 1e-2:
         raise SceneError(path, "numerics.rtol", f"{rtol!r}: must be in [1e-14, 1e-2]")
-    method = numerics.get("method", "DOP853")
+    method = numerics.get("method", "taylor")
+    if method in SCIPY_METHODS:
+        method = f"scipy:{method}"
     if method not in METHODS:
         raise SceneError(path, "numerics.method", f"{method!r}: must be one of {', '.join(METHODS)}")
-    return Scene(path, data.get("name", path.stem), data.get("description", ""), body, (t0, t1), samples, energy,
-                 initial, speed, list(dict.fromkeys(compute)), list(dict.fromkeys(figures)), rtol, atol, method,
-                 data.get("title", ""), tuple(dict.fromkeys(formats)))
+    return rtol, atol, method
+
+
+def load_scene(path) -> Scene:
+    """Parse and validate a scene file; raises :class:`SceneError`."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise SceneError(path, "file", "not found") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise SceneError(path, "file", f"not valid TOML ({exc})") from None
+    top = sorted(set(data) - {"name", "title", "description", "body", "sweep", "motion", "effects", "numerics"})
+    if top:
+        raise SceneError(path, top[0], "unknown field; allowed: name, title, description, [body] or [sweep], "
+                         "[motion], [effects], [numerics]")
+    for key in ("name", "title", "description"):
+        if key in data and not isinstance(data[key], str):
+            raise SceneError(path, key, "must be a string")
+    if ("body" in data) == ("sweep" in data):
+        raise SceneError(path, "body", "give exactly one of [body] (one body) or [sweep] (many)")
+    sweep = parse_sweep(path, data["sweep"]) if "sweep" in data else None
+    body = None if sweep else _body(path, _table(path, data, "body", ("kind", "inertia", "p", "d", "mass", "offset")))
+    motion = _table(path, data, "motion", ("time", "samples", "energy", "initial", "gamma0", "speed"))
+    window, samples, energy, initial, speed = _motion(path, motion, sweep)
+    compute, figures, formats = _effects(path, _table(path, data, "effects", ("compute", "figures", "figures_format")),
+                                         body, sweep)
+    rtol, atol, method = _numerics(path, _table(path, data, "numerics", ("rtol", "atol", "method")))
+    return Scene(path, data.get("name", path.stem), data.get("description", ""), body or {"kind": "sweep"}, window,
+                 samples, energy, initial, speed, list(dict.fromkeys(compute)), list(dict.fromkeys(figures)), rtol,
+                 atol, method, data.get("title", ""), tuple(dict.fromkeys(formats)), sweep)

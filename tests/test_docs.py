@@ -33,6 +33,7 @@ GALLERY = {
     "plot_fig5_basis_p3": 1,
     "plot_work_precision": 1,
     "plot_first_integral": 1,
+    "plot_general_body_study": 1,
 }
 
 

@@ -16,7 +16,8 @@ from suslov import engine, figures
 from suslov.planner import make_plan
 from suslov.scene import SceneError, load_scene
 
-SCENES = sorted(Path(__file__).resolve().parent.parent.joinpath("scenes").glob("*.toml"))
+SCENES = [p for p in sorted(Path(__file__).resolve().parent.parent.joinpath("scenes").glob("*.toml"))
+          if not load_scene(p).is_sweep]   # sweep figures: tests/test_sweep.py
 SCENE = {p.stem: p for p in SCENES}
 
 

@@ -10,12 +10,13 @@ import numpy as np
 import pytest
 
 import generated.suslov_formulas as gf
-from suslov import engine, integrate
+from suslov import engine, integrate, taylor
 from suslov.cli import main
 from suslov.engine import execute
 from suslov.planner import make_plan
 from suslov.scene import SceneError, load_scene
 from suslov.sleigh import Sleigh
+from suslov.validated import scattering_angle_enclosure
 
 SCENES = sorted((Path(__file__).resolve().parent.parent / "scenes").glob("*.toml"))
 
@@ -42,6 +43,10 @@ def test_every_scene_runs_and_draws(scene, tmp_path):
         png = out / f"{fig}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     results = json.loads((out / "results.json").read_text())
+    if parsed.is_sweep:   # tests/test_sweep.py checks sweeps in detail
+        assert results["summary"]["points"] == len(parsed.sweep)
+        assert (out / "results.csv").read_text().count("\n") == len(parsed.sweep) + 1
+        return
     assert results["steps"] == [s.name for s in make_plan(parsed).steps]
     assert "Plan and what ran" in (out / "report.md").read_text()
 
@@ -75,15 +80,21 @@ def test_closed_form_angle_integrates_nothing(tmp_path, monkeypatch):
                                                                        rel=1e-14)
 
 
-def test_general_body_is_integrated(tmp_path, monkeypatch):
+@pytest.mark.parametrize("method, module, function", [("taylor", taylor, "taylor_angle"),
+                                                      ("scipy:DOP853", integrate, "solve_poisson")])
+def test_general_body_is_integrated(tmp_path, monkeypatch, method, module, function):
+    """Taylor integration by default, SciPy on request; both agree with the rigorous ball."""
     calls = []
-    original = integrate.solve_poisson
-    monkeypatch.setattr(integrate, "solve_poisson", lambda *a, **k: calls.append(1) or original(*a, **k))
+    original = getattr(module, function)
+    monkeypatch.setattr(module, function, lambda *a, **k: calls.append(1) or original(*a, **k))
     forbid(monkeypatch, (gf, "scattering_angle"), (gf, "gamma_basis"))
     text = OMEGA_ONLY.replace("p = 2.5\nd = 0.7", "inertia = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]")
-    run = execute(make_plan(load_scene(write(tmp_path, text.replace('["omega"]', '["scattering_angle"]')))))
+    text = text.replace('["omega"]', '["scattering_angle"]') + f'[numerics]\nmethod = "{method}"\n'
+    run = execute(make_plan(load_scene(write(tmp_path, text))))
     assert [e["step"] for e in run.executed] == ["angle_integrate"] and calls
     assert run.results["scattering_angle"]["error_estimate"] < 1e-10
+    ball = scattering_angle_enclosure(*run.plan.body.entries, digits=20).angle
+    assert abs(run.results["scattering_angle"]["radians"] - float(ball.mid())) < 1e-10
 
 
 def test_odd_p_gamma_uses_closed_form_and_matches_integration(tmp_path, monkeypatch):

@@ -1,0 +1,178 @@
+"""One executor for chunks of independent work: local processes by default, a Dask cluster on request.
+
+Used by sweep scenes (:mod:`suslov.sweep`); the work is a picklable top-level function applied to
+each chunk.  Guarantees, whatever runs the chunks:
+
+* **Same results, same order.**  Results come back indexed by chunk, so the caller assembles rows
+  in point order; the work function is deterministic (seeds are drawn by the caller, before
+  chunking), so local processes, one process and a Dask cluster give identical tables.
+* **Resumable.**  With a :class:`ChunkStore`, every finished chunk is written at once (atomically:
+  a temporary file renamed into place) under a key that hashes the chunk's inputs and the code
+  that computes it; a rerun after an interruption loads what is there and computes only the rest.
+  A truncated or foreign file fails its checksum and is recomputed, never trusted.
+* **Clear failures.**  An unreachable scheduler is reported within ``CONNECT_TIMEOUT`` seconds
+  (:class:`SchedulerError`); Ctrl-C stops the pool and leaves the finished chunks in the store.
+
+Local processes use the ``spawn`` start method: a forked child would inherit LLVM's state from a
+parent that already compiled a Taylor integrator, which is not fork-safe.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import time
+from collections.abc import Callable
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from multiprocessing import get_context
+from pathlib import Path
+
+CONNECT_TIMEOUT = 10.0
+SCHEDULER_ENV = "SUSLOV_SCHEDULER"
+
+
+class SchedulerError(RuntimeError):
+    """The Dask scheduler cannot be reached or is not usable."""
+
+
+class ChunkStore:
+    """Finished chunks on disk: ``DIR/<key>.json`` holding ``{"key", "sha256", "result"}``.
+
+    ``key`` must change whenever the chunk's result could (inputs, options, code version); the
+    checksum covers the serialized result, so a truncated or edited file is detected.
+    """
+
+    def __init__(self, directory):
+        self.directory = Path(directory)
+
+    def _path(self, key: str) -> Path:
+        return self.directory / f"{key}.json"
+
+    def get(self, key: str):
+        path = self._path(key)
+        try:
+            record = json.loads(path.read_text(encoding="utf-8"))
+            payload = json.dumps(record["result"], sort_keys=True)
+            if record["key"] != key or record["sha256"] != hashlib.sha256(payload.encode()).hexdigest():
+                return None
+            return record["result"]
+        except (OSError, ValueError, KeyError, TypeError):
+            return None
+
+    def put(self, key: str, result) -> None:
+        self.directory.mkdir(parents=True, exist_ok=True)
+        payload = json.dumps(result, sort_keys=True)
+        record = {"key": key, "sha256": hashlib.sha256(payload.encode()).hexdigest(), "result": result}
+        tmp = self.directory / f".{key}.{os.getpid()}.tmp"
+        tmp.write_text(json.dumps(record, sort_keys=True), encoding="utf-8")
+        tmp.replace(self._path(key))
+
+
+def default_workers() -> int:
+    return max(1, os.cpu_count() or 1)
+
+
+def scheduler_address(cli_value: str | None) -> str | None:
+    """The scheduler from ``--scheduler`` or, failing that, the ``SUSLOV_SCHEDULER`` environment variable."""
+    return cli_value or os.environ.get(SCHEDULER_ENV) or None
+
+
+class _Progress:
+    """'k/n chunks, elapsed, about T left' lines, at most one a second."""
+
+    def __init__(self, total: int, report: Callable[[str], None] | None):
+        self.total, self.report, self.done = total, report, 0
+        self.start = self.last = time.perf_counter()
+
+    def tick(self, computed: bool = True):
+        self.done += 1
+        now = time.perf_counter()
+        if self.report and (now - self.last >= 1.0 or self.done == self.total):
+            self.last = now
+            rate = (now - self.start) / self.done
+            left = rate * (self.total - self.done)
+            self.report(f"chunks {self.done}/{self.total}, {now - self.start:.1f} s, about {left:.0f} s left")
+
+
+def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkStore | None = None,
+               scheduler: str | None = None, workers: int | None = None,
+               progress: Callable[[str], None] | None = None) -> tuple[list, int]:
+    """``[work(c) for c in chunks]`` in chunk order, computing only what ``store`` lacks.
+
+    Returns (results, number of chunks computed now).  ``scheduler`` is a dask.distributed
+    address (``tcp://host:port``); otherwise ``workers`` local processes (default: all cores;
+    1 runs in this process).
+    """
+    results: list = [None] * len(chunks)
+    pending = []
+    for i, key in enumerate(keys):
+        cached = store.get(key) if store is not None else None
+        if cached is None:
+            pending.append(i)
+        else:
+            results[i] = cached
+    meter = _Progress(len(pending), progress)
+    if progress and len(pending) < len(chunks):
+        progress(f"resuming: {len(chunks) - len(pending)} of {len(chunks)} chunks already computed")
+
+    def finish(i, value):
+        results[i] = value
+        if store is not None:
+            store.put(keys[i], value)
+        meter.tick()
+
+    if not pending:
+        return results, 0
+    if scheduler:
+        _run_dask(work, chunks, keys, pending, scheduler, finish)
+    else:
+        workers = default_workers() if workers is None else workers
+        if workers <= 1 or len(pending) == 1:
+            for i in pending:
+                finish(i, work(chunks[i]))
+        else:
+            _run_local(work, chunks, pending, min(workers, len(pending)), finish)
+    return results, len(pending)
+
+
+def _run_local(work, chunks, pending, workers, finish):
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn"))
+    try:
+        futures = {pool.submit(work, chunks[i]): i for i in pending}
+        remaining = set(futures)
+        while remaining:
+            done, remaining = wait(remaining, return_when=FIRST_COMPLETED)
+            for future in sorted(done, key=futures.get):
+                finish(futures[future], future.result())
+    except BaseException:
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown()
+
+
+def connect(address: str, timeout: float = CONNECT_TIMEOUT):
+    """A ``distributed.Client`` for ``address``, or :class:`SchedulerError` within ``timeout`` seconds."""
+    try:
+        from distributed import Client
+    except ImportError as exc:
+        raise SchedulerError(f"--scheduler {address}: dask.distributed is not importable ({exc}); "
+                             "pip install 'suslov-certified[dask]'") from None
+    try:
+        return Client(address, timeout=f"{math.ceil(timeout)}s", set_as_default=False)
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise SchedulerError(f"--scheduler {address}: cannot reach a Dask scheduler within {timeout:g} s "
+                             f"({type(exc).__name__}: {exc})") from None
+
+
+def _run_dask(work, chunks, keys, pending, address, finish):
+    from distributed import as_completed
+
+    client = connect(address)
+    try:
+        futures = [client.submit(work, chunks[i], key=f"suslov-{keys[i]}", pure=False) for i in pending]
+        index = {f.key: i for f, i in zip(futures, pending)}
+        for future in as_completed(futures, loop=client.loop):
+            finish(index[future.key], future.result())
+    finally:
+        client.close()

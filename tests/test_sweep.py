@@ -1,0 +1,222 @@
+"""Sweep scenes (issue 15): points, per-point methods, one table, executors, resume, bad input.
+
+Expected values come from independent routes: the certified closed form of Theorem 5.2 for
+I13 = 0 and the validated ball integration (python-flint, 30 digits) for general bodies.
+"""
+import csv
+import json
+import time
+
+import numpy as np
+import pytest
+
+import generated.suslov_formulas as gf
+from suslov import executor, sweep
+from suslov.cli import main
+from suslov.scene import SceneError, load_scene
+from suslov.validated import scattering_angle_enclosure
+
+GRID = """
+name = "grid"
+[sweep]
+I11 = 2.0
+I22 = 1.0
+I33 = 1.5
+I13 = {linear = [-0.3, 0.3], count = 3}
+I23 = {linear = [-0.5, 0.5], count = 3}
+energy = [0.5, 3.0]
+chunk = 4
+[effects]
+compute = ["scattering_angle"]
+figures = ["map"]
+"""
+
+
+def write(tmp_path, text, name="scene.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def read_csv(path):
+    with path.open(newline="") as handle:
+        rows = list(csv.reader(handle))
+    return rows[0], [dict(zip(rows[0], row)) for row in rows[1:]]
+
+
+def test_grid_points_methods_and_table(tmp_path):
+    out = tmp_path / "out"
+    assert main(["simulate", str(write(tmp_path, GRID)), "--out", str(out), "--quiet", "--workers", "1"]) == 0
+    header, rows = read_csv(out / "results.csv")
+    assert header[:7] == ["I11", "I22", "I33", "I12", "I13", "I23", "energy"]
+    assert header[-1] == "error" and "scattering_angle_error" in header and "energy_spread" in header
+    assert len(rows) == 18
+    for row in rows:
+        i13, i23 = float(row["I13"]), float(row["I23"])
+        if i13 == 0 and i23 == 0:   # the constraint axis is principal: refused on its row, not the sweep
+            assert row["error"].startswith("refused") and row["scattering_angle"] == ""
+            continue
+        assert row["error"] == ""
+        angle = float(row["scattering_angle"])
+        if i13 == 0:
+            assert row["scattering_angle_method"].startswith("closed form")
+        else:
+            assert "Taylor" in row["scattering_angle_method"]
+            assert float(row["scattering_angle_error"]) < 1e-9
+        assert float(row["energy_spread"]) < 1e-9   # energy-independent (two energies per body)
+        assert 0 < angle <= np.pi
+    assert (out / "map.png").read_bytes()[:4] == b"\x89PNG"
+    parquet = pytest.importorskip("pyarrow.parquet").read_table(out / "results.parquet").to_pydict()
+    assert list(parquet) == header and parquet["I13"] == [float(r["I13"]) for r in rows]
+    summary = json.loads((out / "results.json").read_text())["summary"]
+    assert summary["points"] == 18 and summary["refused_or_failed"] == 2
+    assert not sweep.chunk_dir(out).exists()
+
+
+def test_sweep_angles_match_independent_enclosures():
+    """Three seeded general bodies: the sweep's float angle against a 30-digit rigorous ball."""
+    rng = np.random.default_rng(15)
+    options = {"effects": ["scattering_angle"], "method": "taylor", "kind": "tensor",
+               "columns": ["I11", "I22", "I33", "I12", "I13", "I23", "energy"]}
+    rows = [[2.0, 1.0, 1.5, 0.0, float(rng.uniform(-0.5, 0.5)), float(rng.uniform(-0.5, 0.5)), 1.0]
+            for _ in range(3)]
+    for row, result in zip(rows, sweep.evaluate_chunk((options, rows))):
+        body = sweep.point_body(dict(zip(options["columns"], row)), "tensor")
+        ball = scattering_angle_enclosure(*body.entries, digits=30).angle
+        assert float(ball.rad()) < 1e-28
+        assert abs(result["scattering_angle"] - float(ball.mid())) < 1e-10
+
+
+def test_pd_sweep_uses_the_closed_form_everywhere(tmp_path):
+    text = """
+[sweep]
+p = {log = [0.5, 8.0], count = 4}
+d = {random = [0.1, 2.0], count = 3, seed = 4}
+[effects]
+compute = ["scattering_angle"]
+figures = ["histogram"]
+"""
+    scene = load_scene(write(tmp_path, text))
+    table, plan, _, _ = sweep.run_sweep(scene, tmp_path / "out", workers=1)
+    assert list(plan.classes) == [("angle_closed_form",)]
+    expected = gf.scattering_angle(np.array(table["p"]), np.array(table["d"]))
+    assert np.array_equal(np.array(table["scattering_angle"]), expected)
+    assert (tmp_path / "out" / "histogram.png").exists()
+
+
+def test_results_identical_across_executors(tmp_path):
+    """One process, two local processes and a Dask LocalCluster on loopback: byte-identical tables."""
+    distributed = pytest.importorskip("distributed")
+    scene = write(tmp_path, GRID.replace('figures = ["map"]', ""))
+    assert main(["simulate", str(scene), "--out", str(tmp_path / "one"), "--quiet", "--workers", "1"]) == 0
+    assert main(["simulate", str(scene), "--out", str(tmp_path / "two"), "--quiet", "--workers", "2"]) == 0
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, host="127.0.0.1", dashboard_address=None,
+                                  processes=True) as cluster:
+        assert main(["simulate", str(scene), "--out", str(tmp_path / "dask"), "--quiet",
+                     "--scheduler", cluster.scheduler_address]) == 0
+    one = (tmp_path / "one" / "results.csv").read_bytes()
+    assert one == (tmp_path / "two" / "results.csv").read_bytes() == (tmp_path / "dask" / "results.csv").read_bytes()
+
+
+def test_unreachable_scheduler_fails_fast_and_writes_nothing(tmp_path, capsys):
+    pytest.importorskip("distributed")
+    out = tmp_path / "out"
+    start = time.perf_counter()
+    status = main(["simulate", str(write(tmp_path, GRID)), "--out", str(out), "--quiet",
+                   "--scheduler", "tcp://127.0.0.1:9"])
+    assert status == 2 and time.perf_counter() - start < 12
+    assert "cannot reach a Dask scheduler" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_interrupted_sweep_resumes_from_finished_chunks(tmp_path, monkeypatch):
+    scene = load_scene(write(tmp_path, GRID))
+    out = tmp_path / "out"
+    calls = []
+    original = sweep.evaluate_chunk
+
+    def interrupted(task):
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        calls.append(1)
+        return original(task)
+
+    monkeypatch.setattr(sweep, "evaluate_chunk", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        sweep.run_sweep(scene, out, workers=1)
+    assert not out.exists() and len(list(sweep.chunk_dir(out).glob("*.json"))) == 2
+    # a corrupted chunk is detected by its checksum and recomputed, never trusted
+    first = sorted(sweep.chunk_dir(out).glob("*.json"))[0]
+    first.write_text(first.read_text()[:-20])
+    monkeypatch.setattr(sweep, "evaluate_chunk", original)
+    table, plan, _, computed = sweep.run_sweep(scene, out, workers=1)
+    assert plan.chunks == 5 and computed == 4
+    fresh, _, _, _ = sweep.run_sweep(scene, tmp_path / "fresh", workers=1)
+    assert json.dumps(table) == json.dumps(fresh)
+
+
+def test_chunk_store_rejects_foreign_entries(tmp_path):
+    store = executor.ChunkStore(tmp_path)
+    store.put("abc", [{"x": 1.0}])
+    assert store.get("abc") == [{"x": 1.0}]
+    (tmp_path / "abc.json").rename(tmp_path / "def.json")     # right checksum, wrong key
+    assert store.get("def") is None and store.get("missing") is None
+
+
+def test_csv_bodies_refuse_bad_rows_not_the_sweep(tmp_path):
+    (tmp_path / "bodies.csv").write_text("I11,I22,I33,I12,I13,I23,energy\n2,1,1.5,0,0.2,-0.3,1\n"
+                                         "1,1,1,0,2,0,1\n2,1,1.5,0.1,0,-0.4,3\n")
+    text = '[sweep]\nbodies = "bodies.csv"\n[effects]\ncompute = ["scattering_angle"]\n'
+    table, _, _, _ = sweep.run_sweep(load_scene(write(tmp_path, text)), tmp_path / "out", workers=1)
+    assert table["error"][0] == "" and table["error"][2] == ""
+    assert table["error"][1].startswith("refused") and "positive definite" in table["error"][1]
+
+
+@pytest.mark.parametrize("csv_text, where", [
+    ("I11,I22,I33,I12,I13\n2,1,1.5,0,0.2\n", "missing column 'I23'"),
+    ("I11,I22,I33,I12,I13,I23\n2,1,1.5,0,0.2,-0.3\n2,1,x,0,0.2,-0.3\n", "row 2, column I33"),
+    ("I11,I22,I33,I12,I13,I23\n2,1,1.5,0,nan,-0.3\n", "row 1, column I13"),
+    ("I11,I22,I33,I12,I13,I23\n", "no data rows"),
+])
+def test_malformed_csv_is_rejected_naming_row_or_column(tmp_path, csv_text, where):
+    (tmp_path / "bodies.csv").write_text(csv_text)
+    path = write(tmp_path, '[sweep]\nbodies = "bodies.csv"\n[effects]\ncompute = ["scattering_angle"]\n')
+    with pytest.raises(SceneError, match=where) as info:
+        load_scene(path)
+    assert "bodies.csv" in str(info.value)
+
+
+@pytest.mark.parametrize("sweep_text, field, reason", [
+    ("p = {linear = [1, 2], count = 0}\nd = 0.5", "sweep.p", "0 points"),
+    ("p = {linear = [1, 2], count = -3}\nd = 0.5", "sweep.p.count", "cannot be negative"),
+    ("p = {linear = [1, 2], count = 10000}\nd = {linear = [0.1, 1], count = 10000}", "sweep", "more than 10000000"),
+    ("p = {log = [0, 2], count = 3}\nd = 0.5", "sweep.p.log", "both ends > 0"),
+    ("p = 1.0", "sweep.d", "missing"),
+    ("p = 1.0\nd = 0.5\nI11 = 2.0", "sweep", "exactly one of"),
+    ("p = 1.0\nd = 0.5\nenergy = [1.0, -2.0]", "sweep.energy", "must be > 0"),
+    ("p = {linear = [1, 2]}\nd = 0.5", "sweep.p.count", "must be an integer"),
+])
+def test_bad_sweep_is_rejected_and_nothing_written(tmp_path, capsys, sweep_text, field, reason):
+    path = write(tmp_path, f"[sweep]\n{sweep_text}\n[effects]\ncompute = [\"scattering_angle\"]\n")
+    out = tmp_path / "out"
+    assert main(["simulate", str(path), "--out", str(out), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert f": {field}: " in err and reason in err
+    assert not out.exists()
+
+
+def test_sweep_refuses_per_body_effects(tmp_path):
+    path = write(tmp_path, '[sweep]\np = 1.0\nd = 0.5\n[effects]\ncompute = ["gamma"]\n')
+    with pytest.raises(SceneError, match="not a scalar effect"):
+        load_scene(path)
+
+
+def test_explain_prints_the_plan_without_computing(tmp_path, monkeypatch, capsys):
+    def boom(*args):
+        raise AssertionError("--explain must not compute")
+    monkeypatch.setattr(sweep, "evaluate_chunk", boom)
+    assert main(["simulate", str(write(tmp_path, GRID)), "--explain", "--workers", "2"]) == 0
+    text = capsys.readouterr().out
+    assert "18 points" in text and "grid over I13 (3), I23 (3), energy (2)" in text
+    assert "12 points: angle_integrate" in text and "4 points: angle_closed_form" in text
+    assert "2 points: refused" in text and "chunks of up to 4 points" in text and "estimated cost" in text
