@@ -33,6 +33,7 @@ from derivations.options import PMAX_LIMIT, BuildOptions
 from derivations.pdf import PdfError, compile_pdfs, document_report
 from derivations.pipeline import GENERATED, ROOT, Progress, compare_trees, derive, summary, write_atomically
 from derivations.registry import DERIVATIONS
+from suslov.executor import SchedulerError, check_reachable, scheduler_address
 
 
 def _pmax(text: str) -> int:
@@ -83,8 +84,24 @@ def parser() -> argparse.ArgumentParser:
                     help="compare OLD (a git revision or a generated directory) with generated/ (or --out DIR), "
                          "without rebuilding: list the formulas, tables, certificates and errata that changed and "
                          "write a latexdiff PDF of the formulas document into build/diff/ (needs latexdiff)")
+    ap.add_argument("--jobs", type=_jobs, default=None, metavar="N",
+                    help="worker processes for the per-p certificates (default: all cores; 1: none); the outputs "
+                         "are identical whatever N")
+    ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="send the per-p certificates to a dask.distributed scheduler (tcp://host:port; default "
+                         "$SUSLOV_SCHEDULER) instead of local processes")
     ap.add_argument("--quiet", action="store_true", help="no progress display and no certificate summary")
     return ap
+
+
+def _jobs(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value}: must be at least 1")
+    return value
 
 
 def verify_tree(directory: Path, pmax: int | None, quiet: bool) -> int:
@@ -152,7 +169,13 @@ def main(argv: list[str] | None = None) -> int:
             ap.error("--verify DIR checks an existing tree; it cannot be combined with --only, --check or --out")
         explicit = any(a == "--pmax" or a.startswith("--pmax=") for a in (argv if argv is not None else sys.argv[1:]))
         return verify_tree(args.verify, args.pmax if explicit else None, args.quiet)
-    options = BuildOptions(pmax=args.pmax)
+    options = BuildOptions(pmax=args.pmax, jobs=args.jobs, scheduler=scheduler_address(args.scheduler))
+    if options.scheduler:
+        try:
+            check_reachable(options.scheduler)
+        except SchedulerError as exc:
+            print(f"build_formulas.py: {exc}; nothing was written", file=sys.stderr)
+            return 2
     target = args.out if args.out is not None else (None if args.only else GENERATED)
 
     try:
@@ -161,6 +184,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"build_formulas.py: {failure}", file=sys.stderr)
         print("build_formulas.py: nothing was written", file=sys.stderr)
         return 1
+    except SchedulerError as exc:
+        print(f"build_formulas.py: {exc}; nothing was written", file=sys.stderr)
+        return 2
     if args.check:
         reference = target
         with tempfile.TemporaryDirectory(prefix="suslov-check-") as tmp:

@@ -90,6 +90,8 @@ class CertificateLog:
     derivation: str = ""
     on_record: object = None  # optional callback(Certificate) for progress display
     on_phase: object = None   # optional callback(label, done, total, p) for per-p phases (progress display)
+    workers: int | None = None   # map_per_p: local processes (None: all cores; 1: in this process)
+    scheduler: str | None = None  # map_per_p: a dask.distributed scheduler address instead
 
     def record(self, certificate: Certificate) -> Certificate:
         certificate.derivation = certificate.derivation or self.derivation
@@ -128,6 +130,37 @@ class CertificateLog:
             yield value
         if callable(report) and values:
             report(label, len(values), len(values), values[-1])
+
+    def map_per_p(self, label: str, values, work) -> list:
+        """``[work(p) for p in values]``, independent per-p computations run in parallel.
+
+        ``work`` is a top-level function (it is sent to worker processes or a Dask cluster) that
+        returns plain data (no python-flint objects: they do not pickle).  The results come back
+        in the order of ``values`` and the caller records the certificates from them, so the
+        certificate log and every output are identical whatever executed the work (one process,
+        local processes, Dask).  Phases shorter than ``PARALLEL_MIN`` values stay in this process.
+        """
+        from suslov.executor import run_chunks  # the simulator's executor: one mechanism for both
+
+        values = list(values)
+        report = self.on_phase if callable(self.on_phase) else None
+        done = [0]
+        if report and values:
+            report(label, 0, len(values), values[0])
+
+        def finished(i):
+            done[0] += 1
+            if report:
+                report(label, done[0], len(values), values[i])
+
+        workers = self.workers if len(values) >= PARALLEL_MIN else 1
+        results, _ = run_chunks(work, values, [str(v) for v in values], workers=workers,
+                                scheduler=self.scheduler if len(values) >= PARALLEL_MIN else None,
+                                on_finish=finished)
+        return results
+
+
+PARALLEL_MIN = 8   # per-p phases with fewer values are not worth starting processes for
 
 
 @contextmanager

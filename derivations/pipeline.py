@@ -133,7 +133,8 @@ def derive(options: BuildOptions, only: list[str] | None = None, progress: Progr
     """Run and certify the derivations (raises CertificationFailure)."""
     names = resolve(only)
     progress = progress or Progress(quiet=True)
-    log = CertificateLog(on_record=progress.certificate, on_phase=progress.phase)
+    log = CertificateLog(on_record=progress.certificate, on_phase=progress.phase, workers=options.jobs,
+                         scheduler=options.scheduler)
     build = Build(options, names, log)
     for index, name in enumerate(names, 1):
         module = DERIVATIONS[name]

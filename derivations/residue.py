@@ -228,6 +228,25 @@ def nowhere_zero_for_positive_d(value: sp.Expr) -> bool:
     return value != 0
 
 
+def logarithm_verdict(p_value: int) -> tuple[str, str, int, list[str], float]:
+    """Per-p work (run in a worker): the Frobenius recursion at t0 for one integer p.
+
+    Returns (verdict, detail for the certificate, number of resonances, LaTeX of the first two
+    non-zero obstructions, seconds of the exact recursion) -- plain data, so it can come back
+    from another process.
+    """
+    with stopwatch() as elapsed:
+        obstructions = frobenius_obstructions(p_value)
+        nonzero = [(k, name, value) for k, name, value in obstructions if value != 0]
+    positive = all(nowhere_zero_for_positive_d(value) for _, _, value in nonzero)
+    verdict = ("no logarithms" if not nonzero else
+               "logarithms for every d > 0" if positive else "logarithms (generic d)")
+    detail = ("all resonance obstructions vanish identically: "
+              + ", ".join(f"k={k} ({name})" for k, name, _ in obstructions)) if not nonzero else (
+        "non-zero obstruction " + ", ".join(f"k={k} ({name}): {sp.factor(v)}" for k, name, v in nonzero))
+    return verdict, detail[:400], len(obstructions), [breakable_product(v) for _, _, v in nonzero][:2], elapsed[0]
+
+
 def run(log: CertificateLog, options, model_result, kova_result, special_result) -> DerivationResult:
     result = DerivationResult(NAME)
     # the largest truncation any p <= pmax uses (laurent_coefficients(p + 1)): lower orders are prefixes
@@ -301,23 +320,15 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
 
     # logarithms per integer p
     log_rows = []
-    for p_value in log.per_p("Frobenius logarithms at t0", options.p_values()):
-        with stopwatch() as elapsed:
-            obstructions = frobenius_obstructions(p_value)
-            nonzero = [(k, name, value) for k, name, value in obstructions if value != 0]
-        positive = all(nowhere_zero_for_positive_d(value) for _, _, value in nonzero)
-        verdict = ("no logarithms" if not nonzero else
-                   "logarithms for every d > 0" if positive else "logarithms (generic d)")
-        detail = ("all resonance obstructions vanish identically: "
-                  + ", ".join(f"k={k} ({name})" for k, name, _ in obstructions)) if not nonzero else (
-            "non-zero obstruction " + ", ".join(f"k={k} ({name}): {sp.factor(v)}" for k, name, v in nonzero))
+    values = options.p_values()
+    # independent per p: run in parallel (CertificateLog.map_per_p), recorded in p order
+    for p_value, (verdict, detail, count, typeset, seconds) in zip(
+            values, log.map_per_p("Frobenius logarithms at t0", values, logarithm_verdict)):
         cert = log.record(Certificate(
             f"p = {p_value}: local solutions of eq:ps at t0 = i pi/2 have {verdict}", "Theorem 3.5",
-            "exact Frobenius recursion in Q(d) (resonance obstructions)", Outcome.PASS, elapsed[0],
-            len(obstructions), detail[:400]))
+            "exact Frobenius recursion in Q(d) (resonance obstructions)", Outcome.PASS, seconds, count, detail))
         log_rows.append({"p": p_value, "parity": "odd" if p_value % 2 else "even", "verdict": verdict,
-                         "obstructions": [breakable_product(v) for _, _, v in nonzero][:2],
-                         "certificate": cert.key})
+                         "obstructions": typeset, "certificate": cert.key})
     has_logs = [row["p"] for row in log_rows if row["verdict"] != "no logarithms"]
     if has_logs:
         result.errata.append(erratum(

@@ -22,6 +22,8 @@ import hashlib
 import json
 import math
 import os
+import socket
+import threading
 import time
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
@@ -97,12 +99,15 @@ class _Progress:
 
 def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkStore | None = None,
                scheduler: str | None = None, workers: int | None = None,
-               progress: Callable[[str], None] | None = None) -> tuple[list, int]:
+               progress: Callable[[str], None] | None = None,
+               on_finish: Callable[[int], None] | None = None) -> tuple[list, int]:
     """``[work(c) for c in chunks]`` in chunk order, computing only what ``store`` lacks.
 
     Returns (results, number of chunks computed now).  ``scheduler`` is a dask.distributed
     address (``tcp://host:port``); otherwise ``workers`` local processes (default: all cores;
-    1 runs in this process).
+    1 runs in this process).  ``on_finish(i)`` is called as chunk i completes (any order).
+    Used by sweeps (:mod:`suslov.sweep`) and by the build's per-p certificates
+    (``derivations.certificates.CertificateLog.map_per_p``).
     """
     results: list = [None] * len(chunks)
     pending = []
@@ -121,6 +126,8 @@ def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkSto
         if store is not None:
             store.put(keys[i], value)
         meter.tick()
+        if on_finish is not None:
+            on_finish(i)
 
     if not pending:
         return results, 0
@@ -151,18 +158,74 @@ def _run_local(work, chunks, pending, workers, finish):
     pool.shutdown()
 
 
+def check_reachable(address: str, timeout: float = CONNECT_TIMEOUT) -> None:
+    """:class:`SchedulerError` at once if nothing listens at ``address`` (``tcp://host:port``)."""
+    from urllib.parse import urlsplit
+
+    parts = urlsplit(address if "://" in address else f"tcp://{address}")
+    try:
+        host, port = parts.hostname, parts.port
+    except ValueError:
+        host = port = None
+    if parts.scheme not in ("tcp", "tls") or not host or not port:
+        raise SchedulerError(f"--scheduler {address}: not a scheduler address (expected tcp://host:port)")
+    try:
+        with socket.create_connection((host, port), timeout=timeout):
+            pass
+    except OSError as exc:
+        raise SchedulerError(f"--scheduler {address}: cannot reach a Dask scheduler ({type(exc).__name__}: "
+                             f"{exc})") from None
+
+
 def connect(address: str, timeout: float = CONNECT_TIMEOUT):
-    """A ``distributed.Client`` for ``address``, or :class:`SchedulerError` within ``timeout`` seconds."""
+    """A ``distributed.Client`` for ``address``, or :class:`SchedulerError` within about ``timeout`` seconds.
+
+    The client is built in a daemon thread with a deadline: a port that accepts connections but
+    does not speak Dask's protocol (a proxy answering HTTP, say) would otherwise fail late or hang.
+    """
+    check_reachable(address, timeout)
     try:
         from distributed import Client
     except ImportError as exc:
         raise SchedulerError(f"--scheduler {address}: dask.distributed is not importable ({exc}); "
                              "pip install 'suslov-certified[dask]'") from None
-    try:
-        return Client(address, timeout=f"{math.ceil(timeout)}s", set_as_default=False)
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise SchedulerError(f"--scheduler {address}: cannot reach a Dask scheduler within {timeout:g} s "
-                             f"({type(exc).__name__}: {exc})") from None
+    outcome: dict = {}
+
+    def attempt():
+        try:
+            outcome["client"] = Client(address, timeout=f"{math.ceil(timeout)}s", set_as_default=False)
+        except BaseException as exc:   # anything the handshake raises becomes one clear error below
+            outcome["error"] = exc
+
+    thread = threading.Thread(target=attempt, name="suslov-dask-connect", daemon=True)
+    thread.start()
+    thread.join(timeout + 1.0)
+    if "client" in outcome:
+        return outcome["client"]
+    reason = outcome.get("error")
+    if reason is not None:
+        _discard_half_built_clients(reason, Client)
+    why = f"{type(reason).__name__}: {reason}" if reason is not None else f"no answer within {timeout:g} s"
+    raise SchedulerError(f"--scheduler {address}: something listens there but does not answer as a Dask "
+                         f"scheduler ({why})"[:400])
+
+
+def _discard_half_built_clients(error: BaseException, client_type) -> None:
+    """Close the Client a failed handshake left behind, quickly.
+
+    Its finaliser would otherwise wait twice the connect timeout at interpreter exit for a
+    scheduler that never answered; the half-built client is found in the traceback's frames.
+    """
+    tb = error.__traceback__
+    while tb is not None:
+        for value in list(tb.tb_frame.f_locals.values()):
+            if isinstance(value, client_type):
+                try:
+                    value.close(timeout=1)
+                except Exception:   # the loop may be dead already: marking it closed is what matters
+                    pass
+                value.status = "closed"
+        tb = tb.tb_next
 
 
 def _run_dask(work, chunks, keys, pending, address, finish):

@@ -5,6 +5,8 @@ I13 = 0 and the validated ball integration (python-flint, 30 digits) for general
 """
 import csv
 import json
+import socket
+import threading
 import time
 
 import numpy as np
@@ -127,6 +129,32 @@ def test_unreachable_scheduler_fails_fast_and_writes_nothing(tmp_path, capsys):
     assert status == 2 and time.perf_counter() - start < 12
     assert "cannot reach a Dask scheduler" in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_a_port_that_is_not_a_scheduler_fails_fast(tmp_path, capsys):
+    """A service that accepts connections but answers HTTP (as a proxy does): a clear error, quickly."""
+    pytest.importorskip("distributed")
+    server = socket.create_server(("127.0.0.1", 0))
+    port = server.getsockname()[1]
+
+    def answer():
+        while True:
+            try:
+                conn, _ = server.accept()
+            except OSError:
+                return
+            conn.recv(64)
+            conn.sendall(b"HTTP/1.1 400 Bad Request\r\ncontent-length: 0\r\n\r\n")
+            conn.close()
+
+    threading.Thread(target=answer, daemon=True).start()
+    start = time.perf_counter()
+    status = main(["simulate", str(write(tmp_path, GRID)), "--out", str(tmp_path / "out"), "--quiet",
+                   "--scheduler", f"tcp://127.0.0.1:{port}"])
+    server.close()
+    assert status == 2 and time.perf_counter() - start < 12
+    assert "does not answer as a Dask scheduler" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
 
 
 def test_interrupted_sweep_resumes_from_finished_chunks(tmp_path, monkeypatch):
