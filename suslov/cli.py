@@ -54,17 +54,24 @@ def main(argv=None) -> int:
     if not args.out:
         print("suslov: error: --out DIR is required (or --explain)", file=sys.stderr)
         return 2
+    files = []
+    status = _guarded(f"scene {scene.path}", lambda: files.extend(write_outputs(execute(plan, progress), args.out,
+                                                                             progress)))
+    if status == 0 and progress:
+        progress(f"wrote {len(files)} files to {args.out}")
+    return status
+
+
+def _guarded(what: str, action) -> int:
+    """Run ``action``; map bad output directories and schedulers to 2, failed computations to 1."""
     try:
-        run = execute(plan, progress)
-        files = write_outputs(run, args.out, progress)
-    except FileExistsError as exc:
+        action()
+    except (FileExistsError, SchedulerError) as exc:
         print(f"suslov: error: {exc}", file=sys.stderr)
         return 2
     except (RuntimeError, ArithmeticError, ValueError) as exc:
-        print(f"suslov: error: scene {scene.path}: computation failed: {exc}", file=sys.stderr)
+        print(f"suslov: error: {what}: computation failed: {exc}", file=sys.stderr)
         return 1
-    if progress:
-        progress(f"wrote {len(files)} files to {args.out}")
     return 0
 
 
@@ -76,21 +83,17 @@ def _sweep(scene, args, progress) -> int:
     if not args.out:
         print("suslov: error: --out DIR is required (or --explain)", file=sys.stderr)
         return 2
+    outcome = []
     try:
-        _, _, seconds, _ = run_sweep(scene, args.out, scheduler=scheduler, workers=args.workers, progress=progress)
-    except (FileExistsError, SchedulerError) as exc:
-        print(f"suslov: error: {exc}", file=sys.stderr)
-        return 2
-    except (RuntimeError, ArithmeticError, ValueError) as exc:
-        print(f"suslov: error: sweep {scene.path}: computation failed: {exc}", file=sys.stderr)
-        return 1
+        status = _guarded(f"sweep {scene.path}", lambda: outcome.append(
+            run_sweep(scene, args.out, scheduler=scheduler, workers=args.workers, progress=progress)))
     except KeyboardInterrupt:
         print(f"suslov: interrupted: finished chunks are kept in {chunk_dir(Path(args.out))}; "
               "run the same command again to resume", file=sys.stderr)
         return 130
-    if progress:
-        progress(f"sweep of {len(scene.sweep)} points done in {seconds:.1f} s; wrote {args.out}")
-    return 0
+    if status == 0 and progress:
+        progress(f"sweep of {len(scene.sweep)} points done in {outcome[0][2]:.1f} s; wrote {args.out}")
+    return status
 
 
 if __name__ == "__main__":
