@@ -50,7 +50,7 @@ from suslov.recipes.basis import Solution
 from suslov.recipes.integrals import e_coefficient
 
 from . import paper
-from .certificates import Certificate, CertificateLog, Outcome, stopwatch
+from .certificates import Certificate, CertificateLog, CertificationFailure, Outcome, stopwatch
 from .errata import erratum
 from .recipe_rings import BASIS_CTX as CTX
 from .recipe_rings import BASIS_RING
@@ -467,19 +467,53 @@ def compare_poly_f2(log: CertificateLog, result: DerivationResult, options) -> N
             "Fhat = [d(p-1)y - d - ip]F - 2d y(y+1)F'", *good, *bad))
 
 
+KEEP_BASES = 15   # bases up to this p are built in the main process and kept (printed examples, tables)
+
+
+def basis_for_p(p: int) -> dict:
+    """Per-p work (run in a worker): the certificates of :func:`genhip_check` and :func:`certify_p`.
+
+    Returns plain data (python-flint objects do not pickle): the certificates (keys left to the
+    main log, which records them in p order), sigma, and the numerators as ``{exponents: (num,
+    den)}`` dicts.  A certificate with an unexpected outcome is returned too, not raised: the main
+    log raises when it records it, exactly as a serial build would.
+    """
+    private = CertificateLog(derivation=NAME)
+    sigma, numerators = 0, ([], [])
+    try:
+        genhip_check(private, p)
+        basis = certify_p(private, p)
+        sigma = basis.sigma
+        numerators = tuple([{e: (int(c.p), int(c.q)) for e, c in m.to_dict().items()} for m in sol.M]
+                           for sol in (basis.real, basis.complex_))
+    except CertificationFailure:
+        pass
+    for certificate in private.certificates:
+        certificate.key = certificate.derivation = ""
+    return {"certificates": private.certificates, "sigma": sigma, "numerators": numerators}
+
+
 def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
     result = DerivationResult(NAME)
     rows = []
     compare_poly_f2(log, result, options)
     bases, objects = {}, {}
-    for p in log.per_p("bases", options.odd_p_values()):
+    # p <= KEEP_BASES here (their Basis objects feed the printed comparisons), the rest in parallel
+    # (CertificateLog.map_per_p); both recorded in p order, so the log is the same either way
+    odd = options.odd_p_values()
+    for p in log.per_p("bases", [q for q in odd if q <= KEEP_BASES]):
         c_f1 = genhip_check(log, p)
-        basis = certify_p(log, p)
+        basis = bases[p] = certify_p(log, p)
         objects[p] = (basis.real.M, basis.complex_.M)
-        if p <= 15:
-            bases[p] = basis
         rows.append({"p": p, "sigma": basis.sigma, "certificates": [c_f1.key] + [c.key for c in basis.certificates],
                      "terms": [len(m) for m in basis.real.M + basis.complex_.M]})
+    later = [q for q in odd if q > KEEP_BASES]
+    for p, outcome in zip(later, log.map_per_p("bases", later, basis_for_p)):
+        keys = [log.record(c).key for c in outcome["certificates"]]   # raises at a failed one, as in serial
+        objects[p] = tuple([CTX.from_dict({e: flint.fmpq(*v) for e, v in m.items()}) for m in part]
+                           for part in outcome["numerators"])
+        rows.append({"p": p, "sigma": outcome["sigma"], "certificates": keys,
+                     "terms": [len(m) for m in objects[p][0] + objects[p][1]]})
     if 3 in bases:
         printed_comparisons(log, result, bases[3].certificates[2])
     compare_printed_examples(log, result, bases)
