@@ -29,6 +29,7 @@ import tempfile
 from pathlib import Path
 
 from derivations.certificates import CertificationFailure
+from derivations.estimate import estimate_seconds
 from derivations.options import PMAX_LIMIT, BuildOptions
 from derivations.pdf import PdfError, compile_pdfs, document_report
 from derivations.pipeline import GENERATED, ROOT, Progress, compare_trees, derive, summary, write_atomically
@@ -56,6 +57,9 @@ class _OneLineErrors(argparse.ArgumentParser):
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
+
+
+ESTIMATE_FROM = 31   # print the time estimate before building beyond this pmax
 
 
 def parser() -> argparse.ArgumentParser:
@@ -177,6 +181,11 @@ def main(argv: list[str] | None = None) -> int:
             print(f"build_formulas.py: {exc}; nothing was written", file=sys.stderr)
             return 2
     target = args.out if args.out is not None else (None if args.only else GENERATED)
+    if not args.quiet and not args.only and options.pmax > ESTIMATE_FROM:
+        seconds = estimate_seconds(options.pmax, options.jobs)
+        if seconds is not None:
+            print(f"build_formulas.py: --pmax {options.pmax}: estimated {seconds / 60:.1f} min on a machine like the "
+                  "benchmark's (power-law fit in bench/results/build.md); proceeding", file=sys.stderr)
 
     try:
         build = derive(options, args.only, Progress(quiet=args.quiet))

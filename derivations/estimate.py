@@ -1,0 +1,39 @@
+"""How long a build will take, before it starts (issue 13: "say the estimate before starting").
+
+From ``bench/results/build.json`` (written by ``bench/bench_build.py`` on the 2-core machine): for
+each per-p phase the fitted cost of one p, ``c p^k`` (residue's Frobenius logarithms at t0
+(Theorem 3.5), the meromorphic bases (Theorem 6.1), the logarithms at s1..s4 of section 5.2,
+the first integrals), summed over the p the build will certify and divided by the workers; plus
+the rest of the build as measured at the largest benchmarked pmax.  An estimate from a power law,
+not a promise: the build says so, and proceeds.
+"""
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+BENCH = Path(__file__).resolve().parent.parent / "bench" / "results" / "build.json"
+GALOIS_PMAX = 40   # galois decides the conjecture for p <= max(pmax, 40) (derivations.galois.GALOIS_PMAX)
+PARALLEL = ("galois", "meromorphic", "residue")   # the phases that run through CertificateLog.map_per_p
+
+
+def estimate_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH) -> float | None:
+    """Estimated wall seconds of a full build at ``pmax``, or None without benchmark data."""
+    try:
+        data = json.loads(bench.read_text(encoding="utf-8"))
+        growth = data["growth"]
+        base_run = next(r for r in data["runs"] if r["pmax"] == data["largest_pmax"] and r["jobs"] == 1)
+    except (OSError, ValueError, KeyError, StopIteration):
+        return None
+    workers = max(1, workers or os.cpu_count() or 1)
+    per_p_total, measured_total = 0.0, 0.0
+    for name, g in growth.items():
+        share = 1.0 / workers if name in PARALLEL else 1.0
+        top = max(pmax, GALOIS_PMAX) if name == "galois" else pmax
+        measured_top = max(data["largest_pmax"], GALOIS_PMAX) if name == "galois" else data["largest_pmax"]
+        start = 1
+        per_p_total += share * sum(g["coefficient"] * p ** g["exponent"] for p in range(start, top + 1, g["step"]))
+        measured_total += sum(g["coefficient"] * p ** g["exponent"] for p in range(start, measured_top + 1, g["step"]))
+    rest = max(0.0, base_run["wall_seconds"] - measured_total)   # everything that is not a per-p phase
+    return rest + per_p_total

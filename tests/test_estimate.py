@@ -1,0 +1,32 @@
+"""The build's time estimate before starting (issue 13): a power law per per-p phase, from the benchmark."""
+import json
+
+from derivations.estimate import BENCH, estimate_seconds
+
+
+def test_estimate_from_a_synthetic_benchmark(tmp_path):
+    """Per-p costs c p^k: galois 0.001 p^2 (every p, at least up to 40), residue 0.01 p (every p),
+    roundtrip 0.5 (serial); 100 s measured at pmax 20 with one job, so 'the rest' is 100 minus the
+    phases at pmax 20."""
+    growth = {"galois": {"coefficient": 0.001, "exponent": 2.0, "step": 1},
+              "residue": {"coefficient": 0.01, "exponent": 1.0, "step": 1},
+              "roundtrip": {"coefficient": 0.5, "exponent": 0.0, "step": 1}}
+    bench = tmp_path / "build.json"
+    bench.write_text(json.dumps({"growth": growth, "largest_pmax": 20,
+                                 "runs": [{"pmax": 20, "jobs": 1, "wall_seconds": 100.0}]}))
+    galois = lambda n: 0.001 * sum(p * p for p in range(1, n + 1))  # noqa: E731
+    residue = lambda n: 0.01 * sum(range(1, n + 1))  # noqa: E731
+    rest = 100.0 - (galois(40) + residue(20) + 0.5 * 20)
+    expected = rest + (galois(60) + residue(60)) / 2 + 0.5 * 60
+    assert abs(estimate_seconds(60, 2, bench) - expected) < 1e-9
+
+
+def test_no_benchmark_no_estimate(tmp_path):
+    assert estimate_seconds(101, 2, tmp_path / "missing.json") is None
+
+
+def test_committed_benchmark_gives_an_estimate():
+    data = json.loads(BENCH.read_text())
+    measured = next(r["wall_seconds"] for r in data["runs"] if r["pmax"] == data["largest_pmax"] and r["jobs"] == 1)
+    assert abs(estimate_seconds(data["largest_pmax"], 1) - measured) < 1e-6 * measured
+    assert estimate_seconds(101, 2) > estimate_seconds(51, 2)
