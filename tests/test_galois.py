@@ -43,3 +43,19 @@ def test_s1_verdict_matches_numeric_monodromy(verdicts, p):
         assert p % 2 == 1 and deviation < 1e-8
     else:
         assert p % 2 == 0 and deviation > 1e-3
+
+
+def test_value_at_m_agrees_with_the_polynomial():
+    """The even-p shortcut (the obstruction's exact value at m = 3) against the full polynomial in m,
+    evaluated afterwards: non-zero for even p, zero for odd p, at s1 and s2."""
+    from derivations import galois
+
+    num_mip, rests, points = galois._obstruction_data()
+    three = galois.MI.constant(3)
+    for p_value in (4, 6, 7, 9):
+        num_p = [c.compose(galois.M_, galois.I_, galois.MI.constant(p_value), ctx=galois.MI) for c in num_mip]
+        for name in ("s1", "s2"):
+            _, polynomial = galois.log_obstruction_fraction_free(num_p, rests[name], points[name], p_value)
+            at_three = galois._red(polynomial.compose(three, galois.I_, ctx=galois.MI))
+            assert galois._nonzero_at(3, num_p, rests[name], points[name], p_value) == (not at_three.is_zero())
+            assert at_three.is_zero() == (p_value % 2 == 1)
