@@ -12,7 +12,7 @@ the same answer):
 Not measured yet: the operator identities of ``hypergeometric`` and the zero tests of
 ``derivations.exact`` (their canonical forms are SymPy's polys domains, which symengine lacks).
 
-Run: ``python bench/bench_symengine.py``; writes ``bench/results/symengine.md`` and ``.json``.
+Run: ``pip install -c constraints.txt -e ".[bench]" && python bench/bench_symengine.py``; writes ``bench/results/symengine.md`` and ``.json``.
 Medians of 5 runs; the machine is shared.
 """
 from __future__ import annotations
