@@ -67,23 +67,40 @@ def per_p_costs(out: Path) -> dict:
     return table
 
 
+def _fit(points):
+    """Least-squares (k, c) of log(cost) = log(c) + k log(p) over the upper half of ``points``."""
+    points = [(p, s) for p, s in points if p >= 9 and s > 0]
+    points = points[len(points) // 2:]
+    if len(points) < 3 or sum(s for _, s in points) < 0.5:
+        return None
+    xs, ys = [math.log(p) for p, _ in points], [math.log(s) for _, s in points]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    k = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    return k, math.exp(my - k * mx)
+
+
 def growth(costs: dict) -> dict:
-    """Least-squares slope of log(cost) against log(p) over the upper half of p (p >= 9)."""
+    """Per derivation, a power law per parity class of p (galois decides even p by one evaluation and odd p
+    by a polynomial, so the two grow differently), with the extrapolated phase at pmax 101 and 201."""
     out = {}
     for name, row in costs.items():
-        points = [(p, s) for p, s in sorted(row.items()) if p >= 9 and s > 0]
-        points = points[len(points) // 2:]
-        if len(points) < 3 or sum(s for _, s in points) < 0.5:
+        classes = []
+        parities = {p % 2 for p in row}
+        for parity in sorted(parities, reverse=True):
+            points = sorted((p, s) for p, s in row.items() if p % 2 == parity)
+            fit = _fit(points)
+            if fit is None:
+                continue
+            first = 1 if parity else 2
+            step = 2 if len(parities) == 2 or parity else 1
+            classes.append({"parity": "odd" if parity else "even", "exponent": fit[0], "coefficient": fit[1],
+                            "first": first, "step": step})
+        if not classes:
             continue
-        xs, ys = [math.log(p) for p, _ in points], [math.log(s) for _, s in points]
-        mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
-        k = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
-        c = math.exp(my - k * mx)
-        step = 2 if all(p % 2 for p in row) else 1
-        out[name] = {"exponent": k, "coefficient": c, "step": step, "largest_p": max(row),
-                     "seconds_at_largest_p": row[max(row)],
-                     "extrapolated_101": sum(c * p**k for p in range(1, 102, step)),
-                     "extrapolated_201": sum(c * p**k for p in range(1, 202, step))}
+        total = lambda n: sum(c["coefficient"] * p ** c["exponent"]  # noqa: E731
+                              for c in classes for p in range(c["first"], n + 1, c["step"]))
+        out[name] = {"classes": classes, "largest_p": max(row), "seconds_at_largest_p": row[max(row)],
+                     "extrapolated_101": total(101), "extrapolated_201": total(201)}
     return out
 
 
@@ -101,10 +118,11 @@ def report(data: dict) -> str:
         lines.append(f"| {r['pmax']} | {r['jobs']} | {r['wall_seconds']:.1f} | {r['peak_rss_mib']:.0f} | "
                      + " | ".join(cells) + " |")
     lines += ["", f"## Growth of the per-p certificates (from the pmax {data['largest_pmax']} run)", "",
-              "| derivation | exponent k (cost of one p ~ p^k) | largest p | its seconds | "
+              "| derivation | exponent k (cost of one p ~ p^k; odd / even p) | largest p | its seconds | "
               "whole phase at pmax 101, one core (s) | at pmax 201 (s) |", "| --- | ---: | ---: | ---: | ---: | ---: |"]
     for name, g in sorted(data["growth"].items()):
-        lines.append(f"| {name} | {g['exponent']:.1f} | {g['largest_p']} | {g['seconds_at_largest_p']:.2f} | "
+        exponents = " / ".join(f"{c['exponent']:.1f} ({c['parity']})" for c in g["classes"])
+        lines.append(f"| {name} | {exponents} | {g['largest_p']} | {g['seconds_at_largest_p']:.2f} | "
                      f"{g['extrapolated_101']:.0f} | {g['extrapolated_201']:.0f} |")
     lines += ["", "Extrapolations assume the fitted power law holds beyond the measured range; divide by the "
               "number of cores for the parallel per-p phases."]

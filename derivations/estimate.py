@@ -32,8 +32,10 @@ def estimate_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH)
         share = 1.0 / workers if name in PARALLEL else 1.0
         top = max(pmax, GALOIS_PMAX) if name == "galois" else pmax
         measured_top = max(data["largest_pmax"], GALOIS_PMAX) if name == "galois" else data["largest_pmax"]
-        start = 1
-        per_p_total += share * sum(g["coefficient"] * p ** g["exponent"] for p in range(start, top + 1, g["step"]))
-        measured_total += sum(g["coefficient"] * p ** g["exponent"] for p in range(start, measured_top + 1, g["step"]))
+        for c in g["classes"]:
+            cost = lambda n, c=c: sum(c["coefficient"] * p ** c["exponent"]  # noqa: E731
+                                      for p in range(c["first"], n + 1, c["step"]))
+            per_p_total += share * cost(top)
+            measured_total += cost(measured_top)
     rest = max(0.0, base_run["wall_seconds"] - measured_total)   # everything that is not a per-p phase
     return rest + per_p_total
