@@ -23,16 +23,19 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import re
 import sys
 import tempfile
 from pathlib import Path
 
+from derivations.cache import TreeCache, build_key
 from derivations.certificates import CertificationFailure
 from derivations.estimate import estimate_seconds
 from derivations.options import PMAX_LIMIT, BuildOptions
 from derivations.pdf import PdfError, compile_pdfs, document_report
-from derivations.pipeline import GENERATED, ROOT, Progress, compare_trees, derive, summary, write_atomically
+from derivations.pipeline import (GENERATED, ROOT, Progress, compare_trees, derive, install_tree, is_byproduct,
+                                  summary, write_atomically)
 from derivations.registry import DERIVATIONS
 from suslov.executor import SchedulerError, check_reachable, scheduler_address
 
@@ -60,6 +63,7 @@ class _OneLineErrors(argparse.ArgumentParser):
 
 
 ESTIMATE_FROM = 31   # print the time estimate before building beyond this pmax
+NO_CACHE_ENV = "SUSLOV_NO_CACHE"
 
 
 def parser() -> argparse.ArgumentParser:
@@ -94,6 +98,10 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
                     help="send the per-p certificates to a dask.distributed scheduler (tcp://host:port; default "
                          "$SUSLOV_SCHEDULER) instead of local processes")
+    ap.add_argument("--no-cache", action="store_true",
+                    help="recompute every certificate (default: reuse results whose sources, library versions and "
+                         "options are unchanged, from $SUSLOV_CACHE_DIR or ~/.cache/suslov-certified; also "
+                         f"${NO_CACHE_ENV}=1)")
     ap.add_argument("--quiet", action="store_true", help="no progress display and no certificate summary")
     return ap
 
@@ -173,7 +181,9 @@ def main(argv: list[str] | None = None) -> int:
             ap.error("--verify DIR checks an existing tree; it cannot be combined with --only, --check or --out")
         explicit = any(a == "--pmax" or a.startswith("--pmax=") for a in (argv if argv is not None else sys.argv[1:]))
         return verify_tree(args.verify, args.pmax if explicit else None, args.quiet)
-    options = BuildOptions(pmax=args.pmax, jobs=args.jobs, scheduler=scheduler_address(args.scheduler))
+    use_cache = not args.no_cache and not os.environ.get(NO_CACHE_ENV)
+    options = BuildOptions(pmax=args.pmax, jobs=args.jobs, scheduler=scheduler_address(args.scheduler),
+                           cache=use_cache)
     if options.scheduler:
         try:
             check_reachable(options.scheduler)
@@ -181,6 +191,11 @@ def main(argv: list[str] | None = None) -> int:
             print(f"build_formulas.py: {exc}; nothing was written", file=sys.stderr)
             return 2
     target = args.out if args.out is not None else (None if args.only else GENERATED)
+    key = build_key(options, None) if use_cache and not args.only else None
+    if key is not None:
+        status = _from_cache(key, target, args)
+        if status is not None:
+            return status
     if not args.quiet and not args.only and options.pmax > ESTIMATE_FROM:
         seconds = estimate_seconds(options.pmax, options.jobs)
         if seconds is not None:
@@ -202,6 +217,8 @@ def main(argv: list[str] | None = None) -> int:
             fresh = Path(tmp) / "generated"
             if not _write(build, fresh):
                 return 1
+            if key is not None:
+                TreeCache().store(key, fresh, keep=lambda name: not is_byproduct(name))
             _summary(build, args.quiet)
             differing = compare_trees(fresh, reference)
         if differing:
@@ -216,8 +233,14 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if not _write(build, target):
         return 1
+    if key is not None:
+        TreeCache().store(key, target, keep=lambda name: not is_byproduct(name))
     _summary(build, args.quiet)
     print(f"wrote {target}")
+    return _pdf(args, target)
+
+
+def _pdf(args, target) -> int:
     if args.pdf is not None:
         try:
             for pdf in compile_pdfs(target, args.pdf):
@@ -228,6 +251,29 @@ def main(argv: list[str] | None = None) -> int:
             print(f"build_formulas.py: --pdf: {error}", file=sys.stderr)
             return 1
     return 0
+
+
+def _from_cache(key: str, target, args) -> int | None:
+    """A whole build from the content-keyed cache (derivations.cache), or None when there is none."""
+    entry = TreeCache().lookup(key)
+    if entry is None:
+        return None
+    note = f"from the certificate cache (key {key[:12]}; --no-cache recomputes)"
+    if args.check:
+        with tempfile.TemporaryDirectory(prefix="suslov-check-") as tmp:
+            install_tree(entry, Path(tmp) / "generated")
+            differing = compare_trees(Path(tmp) / "generated", target)
+        if differing:
+            print(f"build_formulas.py: --check: {target} differs from the build {note} in: "
+                  + ", ".join(differing), file=sys.stderr)
+            return 3
+        print(f"--check: {target} is identical to the build {note}")
+        return 0
+    install_tree(entry, target)
+    (Path(target) / "cache_report.json").write_text(json.dumps({"whole build": "from the cache", "key": key},
+                                                               indent=1) + "\n", encoding="utf-8")
+    print(f"wrote {target} {note}")
+    return _pdf(args, target)
 
 
 def _summary(build, quiet: bool) -> None:

@@ -92,6 +92,8 @@ class CertificateLog:
     on_phase: object = None   # optional callback(label, done, total, p) for per-p phases (progress display)
     workers: int | None = None   # map_per_p: local processes (None: all cores; 1: in this process)
     scheduler: str | None = None  # map_per_p: a dask.distributed scheduler address instead
+    cache: bool = False           # map_per_p: results from/to the content-keyed cache (derivations.cache)
+    cache_report: list = field(default_factory=list)   # what came from the cache (volatile, cache_report.json)
 
     def record(self, certificate: Certificate) -> Certificate:
         certificate.derivation = certificate.derivation or self.derivation
@@ -153,10 +155,17 @@ class CertificateLog:
             if report:
                 report(label, done[0], len(values), values[i])
 
+        store, keys = None, [str(v) for v in values]
+        if self.cache:
+            from .cache import per_p_key, per_p_store
+            store, keys = per_p_store(), [per_p_key(work, v) for v in values]
         workers = self.workers if len(values) >= PARALLEL_MIN else 1
-        results, _ = run_chunks(work, values, [str(v) for v in values], workers=workers,
-                                scheduler=self.scheduler if len(values) >= PARALLEL_MIN else None,
-                                on_finish=finished)
+        results, computed = run_chunks(work, values, keys, store=store, workers=workers,
+                                       scheduler=self.scheduler if len(values) >= PARALLEL_MIN else None,
+                                       on_finish=finished)
+        if store is not None:
+            self.cache_report.append({"phase": label, "values": len(values), "from_cache": len(values) - computed,
+                                      "work": f"{work.__module__}.{work.__qualname__}"})
         return results
 
 

@@ -11,13 +11,15 @@ class BuildOptions:
     """``pmax``: largest p for the per-p tables (both parities up to it).
 
     ``jobs`` (local worker processes for the per-p certificates; None: all cores, 1: none) and
-    ``scheduler`` (a dask.distributed address) choose how the work runs, never what it yields:
-    the outputs are identical whatever they are.
+    ``scheduler`` (a dask.distributed address) choose how the work runs, and ``cache`` whether
+    per-p results may come from the content-keyed cache (:mod:`derivations.cache`), never what
+    it yields: the outputs are identical whatever they are.
     """
 
     pmax: int = 15
     jobs: int | None = field(default=None, compare=False)
     scheduler: str | None = field(default=None, compare=False)
+    cache: bool = field(default=False, compare=False)   # per-p results from/to derivations.cache
 
     def __post_init__(self):
         if isinstance(self.pmax, bool) or not isinstance(self.pmax, int):

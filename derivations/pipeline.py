@@ -37,7 +37,7 @@ from .render import render
 
 ROOT = Path(__file__).resolve().parent.parent
 GENERATED = ROOT / "generated"
-VOLATILE = ("certificate_costs.json", "certificate_costs.tex", "certificate_measurements.json")
+VOLATILE = ("certificate_costs.json", "certificate_costs.tex", "certificate_measurements.json", "cache_report.json")
 
 # the derivations the generated module's formulas come from (and --verify runs)
 MODULE_NEEDS = ("model", "special_case", "kovalevskaya", "meromorphic", "first_integrals", "scattering")
@@ -134,7 +134,7 @@ def derive(options: BuildOptions, only: list[str] | None = None, progress: Progr
     names = resolve(only)
     progress = progress or Progress(quiet=True)
     log = CertificateLog(on_record=progress.certificate, on_phase=progress.phase, workers=options.jobs,
-                         scheduler=options.scheduler)
+                         scheduler=options.scheduler, cache=options.cache)
     build = Build(options, names, log)
     for index, name in enumerate(names, 1):
         module = DERIVATIONS[name]
@@ -226,7 +226,10 @@ def render_into(build: Build, directory: Path) -> list[str]:
     (directory / "certificate_measurements.json").write_text(
         json.dumps({c.key: c.measured for c in build.log.certificates if c.measured}, indent=1, sort_keys=True)
         + "\n", encoding="utf-8")
-    return written + ["certificates.json", "certificate_costs.json", "certificate_measurements.json"]
+    (directory / "cache_report.json").write_text(
+        json.dumps(build.log.cache_report, indent=1, sort_keys=True) + "\n", encoding="utf-8")
+    return written + ["certificates.json", "certificate_costs.json", "certificate_measurements.json",
+                      "cache_report.json"]
 
 
 def write_atomically(build: Build, target: Path) -> None:
@@ -245,6 +248,26 @@ def write_atomically(build: Build, target: Path) -> None:
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
+    swap_in(staging, target)
+
+
+def install_tree(source: Path, target: Path) -> None:
+    """Copy the files of ``source`` (a cached build) into ``target``, swapped in like a fresh build."""
+    target = Path(target)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.new-", dir=target.parent))
+    try:
+        for item in Path(source).iterdir():
+            if item.is_file() and item.name != "manifest.json":
+                shutil.copy2(item, staging / item.name)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    swap_in(staging, target)
+
+
+def swap_in(staging: Path, target: Path) -> None:
+    """Replace ``target`` by ``staging`` (a rename each way; TeX by-products of ``target`` are kept)."""
     if target.is_dir():  # a user's PDF (and the other TeX by-products) survives the rebuild
         for item in target.iterdir():
             if item.is_file() and is_byproduct(item.name) and not (staging / item.name).exists():

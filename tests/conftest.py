@@ -1,5 +1,15 @@
-"""Shared fixtures: one certified build per test session (it takes about a second)."""
+"""Shared fixtures: one certified build per test session (it takes about a second).
+
+The build's certificate cache is off for the whole session (``SUSLOV_NO_CACHE``, inherited by the
+``build_formulas.py`` subprocesses): tests that perturb a derivation at run time must not be
+answered from a cache keyed by unchanged sources.  tests/test_cache.py turns it on in its own
+temporary cache directory.
+"""
+import os
+
 import pytest
+
+os.environ["SUSLOV_NO_CACHE"] = "1"
 
 from derivations.options import BuildOptions
 from derivations.pipeline import derive
