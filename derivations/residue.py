@@ -52,6 +52,7 @@ from .certificates import Certificate, CertificateLog, Outcome, stopwatch
 from .differential import S, T
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero
+from .rational_field import QD
 from .result import DerivationResult
 from .special_case import C_EXT, PD_DOMAIN, poisson_matrix
 from .symbols import I11, I13, I22, I23, c, d, p, r
@@ -112,9 +113,6 @@ def certify_laurent_series(log: CertificateLog, coth: list, csch: list) -> Certi
         elapsed[0], 2 * (n + 1), f"{n + 1} coefficients of each series"))
 
 
-FIELD = sp.QQ.frac_field(d)
-
-
 def _matvec(M, v):
     return [M[i][0] * v[0] + M[i][1] * v[1] + M[i][2] * v[2] for i in range(3)]
 
@@ -126,25 +124,25 @@ def _dot(u, v):
 def frobenius_obstructions(p_value: int) -> list[tuple[int, str, sp.Expr]]:
     """(k, parameter, obstruction) at every resonance of the chain started at exponent -p.
 
-    Arithmetic in the field QQ(d) (SymPy's sparse rational functions): exact and canonical.
+    Arithmetic in the field Q(d) (:class:`derivations.rational_field.QD`: python-flint polynomials,
+    gcd-reduced): exact and canonical; the obstructions are returned as SymPy expressions.
     """
-    K = FIELD
-    dd = K.convert(d)
-    a = K.convert(p_value) / dd
-    e = dd * dd + 1
+    C = QD.constant
+    dd = QD.variable()
+    a = C(p_value) / dd
+    e = dd * dd + C(1)
     coth, csch = laurent_coefficients(p_value + 1)
-    zero = K.zero
-    A = [[[zero, zero, a * K.convert(csch[k])], [zero, zero, a * K.convert(coth[k])],
-          [a * e * K.convert(csch[k]), -a * K.convert(coth[k]), zero]] for k in range(p_value + 2)]
+    zero = C(0)
+    A = [[[zero, zero, a * C(csch[k])], [zero, zero, a * C(coth[k])],
+          [a * e * C(csch[k]), -(a * C(coth[k])), zero]] for k in range(p_value + 2)]
     # eigenvectors of A0 = a [[0,0,1],[0,0,1],[e,-1,0]]: right v, left l, l.v
     eig = {}
     for nu in (-p_value, 0, p_value):
         if nu == 0:
-            right, left = [K.one, e, zero], [K.one, -K.one, zero]
+            right, left = [C(1), e, zero], [C(1), C(-1), zero]
         else:
-            N = K.convert(nu)
-            right = [a, a, N]
-            left = [a * e, -a, N]
+            right = [a, a, C(nu)]
+            left = [a * e, -a, C(nu)]
         eig[nu] = (right, left, _dot(left, right))
     Y = {0: {"alpha": eig[-p_value][0]}}
     obstructions = []
@@ -158,15 +156,15 @@ def frobenius_obstructions(p_value: int) -> list[tuple[int, str, sp.Expr]]:
         mu = k - p_value
         solution = {}
         for name, vec in rhs.items():
-            if all(v == zero for v in vec):
+            if all(v.is_zero() for v in vec):
                 continue
             comps = [zero, zero, zero]
             for nu, (right, left, norm) in eig.items():
                 weight = _dot(left, vec) / norm
                 if nu == mu:
-                    obstructions.append((k, name, K.to_sympy(weight)))
+                    obstructions.append((k, name, weight.to_sympy(d)))
                     continue
-                factor = weight / K.convert(mu - nu)
+                factor = weight / C(mu - nu)
                 comps = [comps[i] + factor * right[i] for i in range(3)]
             solution[name] = comps
         if mu in eig:
