@@ -133,7 +133,7 @@ class CertificateLog:
         if callable(report) and values:
             report(label, len(values), len(values), values[-1])
 
-    def map_per_p(self, label: str, values, work) -> list:
+    def map_per_p(self, label: str, values, work, cacheable: bool = True) -> list:
         """``[work(p) for p in values]``, independent per-p computations run in parallel.
 
         ``work`` is a top-level function (it is sent to worker processes or a Dask cluster) that
@@ -141,6 +141,8 @@ class CertificateLog:
         in the order of ``values`` and the caller records the certificates from them, so the
         certificate log and every output are identical whatever executed the work (one process,
         local processes, Dask).  Phases shorter than ``PARALLEL_MIN`` values stay in this process.
+        ``cacheable=False`` for work whose result depends on more than its module and the value (the
+        round trip's checks of an emitted module, say): never taken from the cache.
         """
         from suslov.executor import run_chunks  # the simulator's executor: one mechanism for both
 
@@ -156,7 +158,7 @@ class CertificateLog:
                 report(label, done[0], len(values), values[i])
 
         store, keys = None, [str(v) for v in values]
-        if self.cache:
+        if self.cache and cacheable:
             from .cache import per_p_key, per_p_store
             store, keys = per_p_store(), [per_p_key(work, v) for v in values]
         workers = self.workers if len(values) >= PARALLEL_MIN else 1

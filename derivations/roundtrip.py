@@ -193,7 +193,7 @@ def certify_module(log: CertificateLog, build, directory: Path) -> list:
         certs = certify_emitted(log, module, emitted_formulas(build))
         certs += certify_integral_core(log, module, build.results["first_integrals"].exports["objects"])
         certs += certify_basis_core(log, module, build.results["meromorphic"].exports["objects"])
-        certs += float_paths.certify(log, module, build)
+        certs += float_paths.certify(log, module, build, directory)
     return certs
 
 
