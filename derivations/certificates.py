@@ -162,9 +162,13 @@ class CertificateLog:
             from .cache import per_p_key, per_p_store
             store, keys = per_p_store(), [per_p_key(work, v) for v in values]
         workers = self.workers if len(values) >= PARALLEL_MIN else 1
-        results, computed = run_chunks(work, values, keys, store=store, workers=workers,
-                                       scheduler=self.scheduler if len(values) >= PARALLEL_MIN else None,
-                                       on_finish=finished)
+        # the cost of a p grows with p: hand out the largest first, so no worker is left with a big
+        # one at the end while the others idle; results are put back in the order of ``values``
+        n = len(values)
+        backwards, computed = run_chunks(work, values[::-1], keys[::-1], store=store, workers=workers,
+                                         scheduler=self.scheduler if n >= PARALLEL_MIN else None,
+                                         on_finish=lambda i: finished(n - 1 - i))
+        results = backwards[::-1]
         if store is not None:
             self.cache_report.append({"phase": label, "values": len(values), "from_cache": len(values) - computed,
                                       "work": f"{work.__module__}.{work.__qualname__}"})
