@@ -62,7 +62,7 @@ def test_corrupt_and_foreign_entries_are_recomputed(cache_dir):
     assert store.get(key2) is None and store.get(key3) is None
     again = CertificateLog(cache=True)
     second = again.map_per_p("logs", [2, 3], lambda p: calls.append(p) or work(p))
-    assert calls == [2, 3]   # both recomputed
+    assert sorted(calls) == [2, 3]   # both recomputed
     assert [r[:4] for r in first] == [r[:4] for r in second]
 
 
