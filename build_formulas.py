@@ -221,12 +221,7 @@ def main(argv: list[str] | None = None) -> int:
                 TreeCache().store(key, fresh, keep=lambda name: not is_byproduct(name))
             _summary(build, args.quiet)
             differing = compare_trees(fresh, reference)
-        if differing:
-            print(f"build_formulas.py: --check: {reference} differs from a fresh build in: "
-                  + ", ".join(differing), file=sys.stderr)
-            return 3
-        print(f"--check: {reference} is identical to a fresh build")
-        return 0
+        return _check_verdict(reference, differing, "a fresh build")
     if target is None:
         _summary(build, args.quiet)
         print("(--only without --out: certified, nothing written)")
@@ -253,6 +248,16 @@ def _pdf(args, target) -> int:
     return 0
 
 
+def _check_verdict(reference, differing: list, against: str) -> int:
+    """--check's report: 0 when ``reference`` is identical to ``against``, else 3 naming the files."""
+    if differing:
+        print(f"build_formulas.py: --check: {reference} differs from {against} in: " + ", ".join(differing),
+              file=sys.stderr)
+        return 3
+    print(f"--check: {reference} is identical to {against}")
+    return 0
+
+
 def _from_cache(key: str, target, args) -> int | None:
     """A whole build from the content-keyed cache (derivations.cache), or None when there is none."""
     entry = TreeCache().lookup(key)
@@ -263,12 +268,7 @@ def _from_cache(key: str, target, args) -> int | None:
         with tempfile.TemporaryDirectory(prefix="suslov-check-") as tmp:
             install_tree(entry, Path(tmp) / "generated")
             differing = compare_trees(Path(tmp) / "generated", target)
-        if differing:
-            print(f"build_formulas.py: --check: {target} differs from the build {note} in: "
-                  + ", ".join(differing), file=sys.stderr)
-            return 3
-        print(f"--check: {target} is identical to the build {note}")
-        return 0
+        return _check_verdict(target, differing, f"the build {note}")
     install_tree(entry, target)
     (Path(target) / "cache_report.json").write_text(json.dumps({"whole build": "from the cache", "key": key},
                                                                indent=1) + "\n", encoding="utf-8")
