@@ -248,3 +248,17 @@ def test_explain_prints_the_plan_without_computing(tmp_path, monkeypatch, capsys
     assert "18 points" in text and "grid over I13 (3), I23 (3), energy (2)" in text
     assert "12 points: angle_integrate" in text and "4 points: angle_closed_form" in text
     assert "2 points: refused" in text and "chunks of up to 4 points" in text and "estimated cost" in text
+
+
+def test_enclosure_effect_in_a_sweep_contains_the_float_angle(tmp_path):
+    """Both scalar effects per point: the rigorous ball (radius as its error) and the float angle
+    (closed form on I13 = 0, Taylor elsewhere) agree within the ball's radius plus the float estimate."""
+    text = ('[sweep]\nI11 = 2.0\nI22 = 1.0\nI33 = 1.5\nI13 = [0.0, 0.2]\nI23 = -0.3\n'
+            '[effects]\ncompute = ["scattering_angle", "scattering_angle_enclosure"]\n')
+    table, plan, _, _ = sweep.run_sweep(load_scene(write(tmp_path, text)), tmp_path / "out", workers=1)
+    assert sorted(plan.classes.values()) == [1, 1]
+    for i in range(2):
+        radius = table["scattering_angle_enclosure_error"][i]
+        assert 0 < radius < 1e-12 and table["scattering_angle_enclosure_method"][i].endswith("(rigorous)")
+        gap = abs(table["scattering_angle"][i] - table["scattering_angle_enclosure"][i])
+        assert gap <= radius + table["scattering_angle_error"][i]
