@@ -31,8 +31,8 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "bench"))
 
 from machine_info import cpu_name  # noqa: E402
+from results_io import write_results  # noqa: E402
 
-RESULTS = ROOT / "bench" / "results"
 LINE = re.compile(r"\[\d+/\d+\] (\w+): (\d+) certificates, ([0-9.]+) s")
 PER_P = re.compile(r"^p = (\d+):")
 
@@ -144,9 +144,7 @@ def main(argv=None):
         costs = per_p_costs(Path(tmp) / f"p{largest}-1")
     data = {"machine": cpu_name(), "python": platform.python_version(), "runs": runs, "largest_pmax": largest,
             "growth": growth(costs), "per_p_costs": {k: {str(p): s for p, s in v.items()} for k, v in costs.items()}}
-    RESULTS.mkdir(exist_ok=True)
-    (RESULTS / "build.json").write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
-    (RESULTS / "build.md").write_text(report(data))
+    write_results("build", data, report(data))
     print(report(data))
 
 

@@ -18,7 +18,6 @@ and ``.json``.  Medians over repeated runs (the machine is shared).
 """
 from __future__ import annotations
 
-import json
 import platform
 import statistics
 import sys
@@ -33,6 +32,7 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "bench"))
 
 from machine_info import cpu_name  # noqa: E402
+from results_io import write_results  # noqa: E402
 
 from suslov import sweep, taylor  # noqa: E402
 from suslov.body import make_body  # noqa: E402
@@ -40,7 +40,6 @@ from suslov.integrate import numeric_angle  # noqa: E402
 from suslov.scene import load_scene  # noqa: E402
 from suslov.validated import scattering_angle_enclosure  # noqa: E402
 
-RESULTS = ROOT / "bench" / "results"
 FIG1 = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]
 SWEEP = """
 name = "bench_sweep"
@@ -187,9 +186,7 @@ def main():
 
     data = {"machine": cpu_name(), "python": platform.python_version(), "trajectory": trajectory(log),
             "sweep": sweep_runs(log), "accuracy": accuracy(log)}
-    RESULTS.mkdir(exist_ok=True)
-    (RESULTS / "simulator.json").write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
-    (RESULTS / "simulator.md").write_text(report(data))
+    write_results("simulator", data, report(data))
     print(report(data))
 
 

@@ -17,7 +17,6 @@ Medians of 5 runs; the machine is shared.
 """
 from __future__ import annotations
 
-import json
 import platform
 import statistics
 import sys
@@ -33,12 +32,12 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "bench"))
 
 from machine_info import cpu_name  # noqa: E402
+from results_io import write_results  # noqa: E402
 
 from derivations import galois, kovalevskaya, model  # noqa: E402
 from derivations.certificates import CertificateLog  # noqa: E402
 from derivations.options import BuildOptions  # noqa: E402
 
-RESULTS = ROOT / "bench" / "results"
 
 
 def same(value, reference) -> bool:
@@ -108,9 +107,7 @@ def main():
                 "emitted LaTeX and the certificates are SymPy objects and a round trip through strings would add "
                 "a conversion to certify.")
     data = {"machine": cpu_name(), "python": platform.python_version(), "cases": cases, "decision": decision}
-    RESULTS.mkdir(exist_ok=True)
-    (RESULTS / "symengine.json").write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
-    (RESULTS / "symengine.md").write_text(report(data))
+    write_results("symengine", data, report(data))
     print(report(data))
 
 

@@ -11,7 +11,8 @@ Two levels, both keyed by what the result depends on and nothing else:
   ``templates/``, ``build_formulas.py``), the library versions and the options; a hit installs the
   stored tree (the same files a cold build writes) in about a second.
 
-Entries are pickles with a SHA-256 of the payload and the key inside; a truncated, edited or
+Per-p entries live in the executor's ``ChunkStore`` (pickles with the key and a SHA-256 of the
+payload in a header; whole trees carry a manifest of SHA-256 per file): a truncated, edited or
 foreign entry fails the check and is recomputed, never trusted (and never unpickled before its
 checksum matched).  Location: ``$SUSLOV_CACHE_DIR``, else ``$XDG_CACHE_HOME/suslov-certified``,
 else ``~/.cache/suslov-certified``; deleting it is always safe.  ``--no-cache`` bypasses it.
@@ -26,7 +27,6 @@ import hashlib
 import importlib.metadata
 import json
 import os
-import pickle
 import platform
 import shutil
 import tempfile
@@ -120,33 +120,11 @@ def build_key(options, only) -> str:
     return digest.hexdigest()[:40]
 
 
-class Store:
-    """``key -> object`` as checksummed pickles under ``directory``."""
+def per_p_store():
+    """The per-p results: the executor's checksummed store (one mechanism for sweeps and the build)."""
+    from suslov.executor import ChunkStore
 
-    def __init__(self, directory):
-        self.directory = Path(directory)
-
-    def get(self, key: str):
-        try:
-            blob = (self.directory / f"{key}.pkl").read_bytes()
-            header, payload = blob.split(b"\n", 1)
-            stored_key, checksum = header.decode().split(" ")
-            if stored_key != key or hashlib.sha256(payload).hexdigest() != checksum:
-                return None
-            return pickle.loads(payload)   # only after the checksum matched
-        except (OSError, ValueError, UnicodeDecodeError, pickle.UnpicklingError, EOFError, AttributeError):
-            return None
-
-    def put(self, key: str, value) -> None:
-        payload = pickle.dumps(value, protocol=4)
-        self.directory.mkdir(parents=True, exist_ok=True)
-        tmp = self.directory / f".{key}.{os.getpid()}.tmp"
-        tmp.write_bytes(f"{key} {hashlib.sha256(payload).hexdigest()}\n".encode() + payload)
-        tmp.replace(self.directory / f"{key}.pkl")
-
-
-def per_p_store() -> Store:
-    return Store(cache_root() / "per-p")
+    return ChunkStore(cache_root() / "per-p", codec="pkl")
 
 
 class TreeCache:

@@ -133,6 +133,13 @@ class CertificateLog:
         if callable(report) and values:
             report(label, len(values), len(values), values[-1])
 
+    def handed_over(self) -> list[Certificate]:
+        """This (worker's private) log's certificates with keys and derivation cleared, for a main log
+        to record in its own order (:meth:`map_per_p`'s work functions return them)."""
+        for certificate in self.certificates:
+            certificate.key = certificate.derivation = ""
+        return self.certificates
+
     def map_per_p(self, label: str, values, work, cacheable: bool = True) -> list:
         """``[work(p) for p in values]``, independent per-p computations run in parallel.
 

@@ -13,8 +13,9 @@ import json
 import os
 from pathlib import Path
 
+from .galois import GALOIS_PMAX   # galois decides the conjecture for p <= max(pmax, GALOIS_PMAX)
+
 BENCH = Path(__file__).resolve().parent.parent / "bench" / "results" / "build.json"
-GALOIS_PMAX = 40   # galois decides the conjecture for p <= max(pmax, 40) (derivations.galois.GALOIS_PMAX)
 PARALLEL = ("galois", "meromorphic", "residue")   # the phases that run through CertificateLog.map_per_p
 
 

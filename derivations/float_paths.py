@@ -199,54 +199,43 @@ def check_meromorphy(log: CertificateLog, module) -> Certificate:
                    "numeric evidence (not a certificate): float64, four bodies")
 
 
-def per_p_checks(task) -> list:
-    """Per-p work (run in a worker): the float-path checks of one p against the module in a directory.
+def basis_checks(task) -> list:
+    """Per-p work (run in a worker): the float-path checks of gamma_basis for one p > BASIS_MP_CHECK_MAX.
 
-    ``task = (kind, directory, p)``, kind "first_integral" or "gamma_basis" (p > BASIS_MP_CHECK_MAX:
-    no independent basis evaluation); returns the certificates, keys left to the main log.  The
-    directory must be visible to the worker (local processes; a Dask cluster on the same file system).  The
-    module is imported from the directory (once per process): the emitted code is what is checked.
+    ``task = (directory, p)``; the module is imported from the directory (once per process), so the
+    emitted code is what is checked, and the directory must be visible to the worker (local
+    processes; a Dask cluster on the same file system).  Returns the certificates, keys left to the
+    main log.
     """
     from .roundtrip import load_module
 
-    kind, directory, p = task
+    directory, p = task
     module = _modules.get(directory)
     if module is None:
         module = _modules[directory] = load_module(Path(directory))
     private = CertificateLog(derivation="roundtrip")
     with mpmath.workdps(15):
-        if kind == "first_integral":
-            check_first_integral(private, module, p)
-        else:
-            check_gamma_basis(private, module, p)
-    for certificate in private.certificates:
-        certificate.key = certificate.derivation = ""
-    return private.certificates
+        check_gamma_basis(private, module, p)
+    return private.handed_over()
 
 
 _modules: dict = {}
 
 
-def certify(log: CertificateLog, module, build, directory=None) -> list:
+def certify(log: CertificateLog, module, build, directory) -> list:
     """Every float-path check; one per function, and one per p for the per-p functions.
 
-    With ``directory`` (where ``module`` was imported from) the independent per-p checks run
-    through ``CertificateLog.map_per_p`` (all cores), recorded in the same order as serially.
+    ``module`` was imported from ``directory``; the gamma_basis checks for p > BASIS_MP_CHECK_MAX run
+    through ``CertificateLog.map_per_p`` (all cores), recorded in p order as a serial run would.
     """
     certs = [check_omega(log, module), check_omega_general(log, module), check_scattering_angle(log, module),
              check_special_case_chain(log, module), check_meromorphy(log, module)]
-    bases = build.results["meromorphic"].exports.get("bases", {})
-    if directory is None:
-        for p in module.INTEGRAL_PS:
-            certs.append(check_first_integral(log, module, p))
-        for p in module.BASIS_PS:
-            certs += check_gamma_basis(log, module, p, bases.get(p) if p <= BASIS_MP_CHECK_MAX else None)
-        return certs
     for p in module.INTEGRAL_PS:   # milliseconds each: not worth a process
         certs.append(check_first_integral(log, module, p))
+    bases = build.results["meromorphic"].exports.get("bases", {})
     for p in [q for q in module.BASIS_PS if q <= BASIS_MP_CHECK_MAX]:
         certs += check_gamma_basis(log, module, p, bases.get(p))
-    tasks = [("gamma_basis", str(directory), p) for p in module.BASIS_PS if p > BASIS_MP_CHECK_MAX]
-    for batch in log.map_per_p("float paths: bases", tasks, per_p_checks, cacheable=False):
+    tasks = [(str(directory), p) for p in module.BASIS_PS if p > BASIS_MP_CHECK_MAX]
+    for batch in log.map_per_p("float paths: bases", tasks, basis_checks, cacheable=False):
         certs += [log.record(c) for c in batch]
     return certs

@@ -488,9 +488,7 @@ def basis_for_p(p: int) -> dict:
                            for sol in (basis.real, basis.complex_))
     except CertificationFailure:
         pass
-    for certificate in private.certificates:
-        certificate.key = certificate.derivation = ""
-    return {"certificates": private.certificates, "sigma": sigma, "numerators": numerators}
+    return {"certificates": private.handed_over(), "sigma": sigma, "numerators": numerators}
 
 
 def run(log: CertificateLog, options, hyper_result) -> DerivationResult:

@@ -22,6 +22,7 @@ import hashlib
 import json
 import math
 import os
+import pickle
 import socket
 import threading
 import time
@@ -39,35 +40,42 @@ class SchedulerError(RuntimeError):
 
 
 class ChunkStore:
-    """Finished chunks on disk: ``DIR/<key>.json`` holding ``{"key", "sha256", "result"}``.
+    """Finished results on disk: ``DIR/<key>.<codec>``, a header line ``<key> <sha256>`` and the payload.
 
-    ``key`` must change whenever the chunk's result could (inputs, options, code version); the
-    checksum covers the serialized result, so a truncated or edited file is detected.
+    ``key`` must change whenever the result could (inputs, options, code version); the checksum
+    covers the payload, so a truncated, edited or foreign file is detected and reads as missing.
+    ``codec``: "json" (sweep chunks: plain data, the default) or "pkl" (the build's per-p results,
+    which hold certificate records; never unpickled before the checksum matched).
     """
 
-    def __init__(self, directory):
-        self.directory = Path(directory)
+    def __init__(self, directory, codec: str = "json"):
+        if codec not in ("json", "pkl"):
+            raise ValueError(f"codec={codec!r}: must be 'json' or 'pkl'")
+        self.directory, self.codec = Path(directory), codec
 
     def _path(self, key: str) -> Path:
-        return self.directory / f"{key}.json"
+        return self.directory / f"{key}.{self.codec}"
+
+    def _dumps(self, value) -> bytes:
+        if self.codec == "json":
+            return json.dumps(value, sort_keys=True).encode()
+        return pickle.dumps(value, protocol=4)
 
     def get(self, key: str):
-        path = self._path(key)
         try:
-            record = json.loads(path.read_text(encoding="utf-8"))
-            payload = json.dumps(record["result"], sort_keys=True)
-            if record["key"] != key or record["sha256"] != hashlib.sha256(payload.encode()).hexdigest():
+            header, payload = self._path(key).read_bytes().split(b"\n", 1)
+            stored_key, checksum = header.decode().split(" ")
+            if stored_key != key or hashlib.sha256(payload).hexdigest() != checksum:
                 return None
-            return record["result"]
-        except (OSError, ValueError, KeyError, TypeError):
+            return json.loads(payload) if self.codec == "json" else pickle.loads(payload)
+        except (OSError, ValueError, UnicodeDecodeError, pickle.UnpicklingError, EOFError, AttributeError):
             return None
 
-    def put(self, key: str, result) -> None:
+    def put(self, key: str, value) -> None:
+        payload = self._dumps(value)
         self.directory.mkdir(parents=True, exist_ok=True)
-        payload = json.dumps(result, sort_keys=True)
-        record = {"key": key, "sha256": hashlib.sha256(payload.encode()).hexdigest(), "result": result}
         tmp = self.directory / f".{key}.{os.getpid()}.tmp"
-        tmp.write_text(json.dumps(record, sort_keys=True), encoding="utf-8")
+        tmp.write_bytes(f"{key} {hashlib.sha256(payload).hexdigest()}\n".encode() + payload)
         tmp.replace(self._path(key))
 
 

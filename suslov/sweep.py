@@ -36,10 +36,10 @@ from generated import suslov_formulas as gf
 
 from . import executor
 from .body import make_body
+from .engine import numeric_angle
 from .planner import point_steps
 from .sweep_spec import tensor_of
 
-REPORT = "report.md"
 SAMPLE_FOR_EXPLAIN = 20_000
 # seconds per point and step, measured by bench/bench_simulator.py on the 2-core machine (rounded up)
 COST = {"angle_closed_form": 3e-5, "angle_integrate:taylor": 5e-4, "angle_integrate:scipy": 2.0,
@@ -138,13 +138,8 @@ def _angle(body, steps, method, point):
         # a (p, d) point is evaluated at its own p, d (the body's are recomputed from a tensor, to rounding)
         p, d = (point["p"], point["d"]) if "p" in point else (body.p, body.d)
         return float(gf.scattering_angle(p, d)), 1e-13 * math.pi, "closed form (Theorem 5.2)"
-    if method == "taylor":
-        from .taylor import taylor_angle
-        angle, error, _ = taylor_angle(body, tol=1e-12)
-        return angle, error, "heyoka Taylor (ss, lam t = 40)"
-    from .integrate import numeric_angle
-    angle, error, _ = numeric_angle(body)
-    return angle, error, "SciPy DOP853 (ss, lam t = 40)"
+    angle, error, _ = numeric_angle(SimpleNamespace(method=method), body)   # the one-body scenes' choice
+    return angle, error, ("heyoka Taylor" if method == "taylor" else "SciPy DOP853") + " (ss, lam t = 40)"
 
 
 def evaluate_point(point: dict, options: dict) -> dict:
