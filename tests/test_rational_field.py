@@ -1,45 +1,105 @@
-"""Q(d) with python-flint (derivations.rational_field.QD) against SymPy's rational functions."""
+"""Q[d, 1/d] with python-flint (derivations.rational_field.LaurentQD) against SymPy.
+
+The ring operations are compared with SymPy's rational functions on random elements, and the
+whole Frobenius recursion of ``derivations.residue`` is rerun in SymPy's field ``QQ.frac_field(d)``
+(an independent arithmetic) and compared obstruction by obstruction.
+"""
+import pytest
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from derivations.rational_field import QD
+from derivations import residue
+from derivations.rational_field import LaurentQD
+from derivations.symbols import d   # the symbol the recursion returns its obstructions in
 
-d = sp.Symbol("d")
 coefficients = st.lists(st.fractions(min_value=-5, max_value=5, max_denominator=7), min_size=1, max_size=4)
+shifts = st.integers(min_value=-3, max_value=3)
 
 
-def element(num, den):
-    """(QD, SymPy) of num/den with the given coefficient lists (den made non-zero)."""
-    den = den if any(den) else [1]
-    q = QD.constant(0)
-    for coeffs, target in ((num, "num"), (den, "den")):
-        poly = QD.constant(0)
-        for i, c in enumerate(coeffs):
-            term = QD.constant(c)
-            for _ in range(i):
-                term = term * QD.variable()
-            poly = poly + term
-        q = poly if target == "num" else q / poly
-    expr = sum(sp.Rational(c.numerator, c.denominator) * d**i for i, c in enumerate(num)) / \
-        sum(sp.Rational(c.numerator, c.denominator) * d**i for i, c in enumerate(den))
-    return q, expr
+def element(coeffs, shift):
+    """(LaurentQD, SymPy) of sum c_i d^(i + shift)."""
+    value = LaurentQD.constant(0)
+    x, inverse = LaurentQD.variable(), LaurentQD.constant(1) / LaurentQD.variable()
+    for i, c in enumerate(coeffs):
+        term = LaurentQD.constant(c)
+        for _ in range(abs(i + shift)):
+            term = term * (x if i + shift > 0 else inverse)
+        value = value + term
+    expr = sum(sp.Rational(c.numerator, c.denominator) * d ** (i + shift) for i, c in enumerate(coeffs))
+    return value, expr
 
 
 @settings(max_examples=60, deadline=None)
-@given(coefficients, coefficients, coefficients, coefficients)
-def test_field_operations_match_sympy(n1, d1, n2, d2):
-    (a, ea), (b, eb) = element(n1, d1), element(n2, d2)
+@given(coefficients, shifts, coefficients, shifts)
+def test_ring_operations_match_sympy(c1, s1, c2, s2):
+    (a, ea), (b, eb) = element(c1, s1), element(c2, s2)
     for value, expr in ((a + b, ea + eb), (a - b, ea - eb), (a * b, ea * eb)):
         assert sp.cancel(value.to_sympy(d) - expr) == 0
         assert value.is_zero() == (sp.cancel(expr) == 0)
-    if not b.is_zero():
-        assert sp.cancel((a / b).to_sympy(d) - ea / eb) == 0
+        assert value == LaurentQD.constant(0) + value   # canonical after adding zero
+
+
+def test_division_by_units_only():
+    x, one = LaurentQD.variable(), LaurentQD.constant(1)
+    assert sp.simplify((one / (LaurentQD.constant(-2) * x * x)).to_sympy(d) + 1 / (2 * d**2)) == 0
+    with pytest.raises(ArithmeticError, match="not a unit"):
+        one / (x + one)
+    with pytest.raises(ZeroDivisionError):
+        one / LaurentQD.constant(0)
 
 
 def test_canonical_form():
-    x = QD.variable()
-    one = QD.constant(1)
-    a = (x * x - one) / (x - one)          # = x + 1 after the gcd
-    assert a == x + one and a.den.degree() == 0
-    assert (a - a).is_zero() and ((one / (QD.constant(2) * x)).den.coeffs()[-1] == 1)
+    x, one = LaurentQD.variable(), LaurentQD.constant(1)
+    a = (x * x + x) / x                  # = x + 1: the shift absorbs the factor d
+    assert a == x + one and a.shift == 0
+    assert (a - a).is_zero() and (a - a).shift == 0
+    assert (x * x * x - x * x * x + x).shift == 1
+
+
+class SympyField:
+    """SymPy's QQ(d) with the interface of LaurentQD: the reference arithmetic."""
+
+    K = sp.QQ.frac_field(d)
+
+    def __init__(self, value):
+        self.value = value
+
+    @classmethod
+    def constant(cls, value):
+        return cls(cls.K.convert(sp.Rational(value)))
+
+    @classmethod
+    def variable(cls):
+        return cls(cls.K.convert(d))
+
+    def __add__(self, other):
+        return SympyField(self.value + other.value)
+
+    def __sub__(self, other):
+        return SympyField(self.value - other.value)
+
+    def __neg__(self):
+        return SympyField(-self.value)
+
+    def __mul__(self, other):
+        return SympyField(self.value * other.value)
+
+    def __truediv__(self, other):
+        return SympyField(self.value / other.value)
+
+    def is_zero(self):
+        return not self.value
+
+    def to_sympy(self, symbol):
+        return self.K.to_sympy(self.value)
+
+
+@pytest.mark.parametrize("p_value", [3, 4, 7, 10])
+def test_recursion_matches_sympy_field(monkeypatch, p_value):
+    fast = residue.frobenius_obstructions(p_value)
+    monkeypatch.setattr(residue, "LaurentQD", SympyField)
+    reference = residue.frobenius_obstructions(p_value)
+    assert [(k, name) for k, name, _ in fast] == [(k, name) for k, name, _ in reference]
+    assert all(sp.cancel(a - b) == 0 for (_, _, a), (_, _, b) in zip(fast, reference))
+    assert any(value != 0 for _, _, value in reference) == (p_value % 2 == 0)
