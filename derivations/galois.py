@@ -20,14 +20,16 @@ Method
    exponent difference satisfies ``Delta^2 = 1 + 4 rho0`` (also at infinity).
 4. *Logarithms.*  With the rational parametrisation ``c = (m^2+1)/(2m)``,
    ``d = (m^2-1)/(2m)`` (m > 1 covers every d > 0) all singular points lie in
-   ``Q(m)(i)``: s3 = -i m, s4 = -i/m.  At a singular point with integer
-   ``Delta = n``, the Frobenius recursion for ``y'' = r y`` from the smaller
-   exponent ``(1-n)/2`` is obstructed at step n by
-   ``sum_{j=1}^{n} r_j y_{n-j}`` (``r = sum r_j zeta^(j-2)``); zero means no
-   logarithm.  Computed exactly in ``QQ_I(m)`` for every p up to the build's
-   ``galois_pmax`` (40 by default).  For even p the obstruction is first evaluated exactly at
-   m = 3 (substituting m is a ring homomorphism, so a non-zero value proves a non-zero
-   obstruction; 170x cheaper at p = 40); odd p need the polynomial, to prove it zero.
+   ``Q(m)(i)``: s3 = -i m, s4 = -i/m.  In ``w = -i z`` the reduced form ``y_ww = -r(i w) y`` is
+   real (certified) with s1..s4 at w = 1, -1, -m, -1/m.  At a singular point with integer
+   ``Delta = n`` the Frobenius recursion from the smaller exponent ``(1-n)/2`` is obstructed at
+   step n by ``sum_{j=1}^{n} r_j y_{n-j}`` (``r = sum r_j zeta^(j-2)``); zero means no logarithm.
+   :mod:`derivations.local_obstruction` computes it exactly in Q(m) (python-flint ``fmpq_poly``,
+   denominators cleared by the least E with den(r_j) | E^j, here m^2 - 1) for s1 and s3 and every
+   p up to the build's ``galois_pmax`` (40 by default); s2 follows from s1 by the certified
+   symmetry (w, m) -> (-w, -m), s4 from s3 by m -> 1/m.  Choice measured: the earlier fraction-free
+   recursion in Q(i)[m] with powers of the leading coefficient (m-degree 28p - 1) took about 80 s
+   at p = 101 and p^3.7 growth; this one takes about 2 s there.
 5. *Proposition 5.4*: for even p, every choice of local exponents compatible
    with the logarithmic points gives ``deg R = -sum rho_i < 0``: enumerated.
 """
@@ -43,6 +45,7 @@ from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero
+from .local_obstruction import log_obstruction
 from .result import DerivationResult
 from .symbols import g1, g2, g3, p, w1, w2
 from .typeset import latex
@@ -50,9 +53,7 @@ from .typeset import latex
 NAME = "galois"
 TITLE = "Differential Galois analysis and logarithms at the singular points (section 5.2)"
 REQUIRES = ("special_case",)
-# The conjecture is decided for p <= max(pmax, GALOIS_PMAX); fraction-free in Q[m, i] with python-flint the
-# whole range p <= 40 costs about 9 s in one process (odd p: 0.07 s at p = 21, 0.8 s at p = 39, roughly p^4;
-# even p: one exact evaluation, milliseconds).
+# The conjecture is decided for p <= max(pmax, GALOIS_PMAX); the whole range p <= 40 costs about a second.
 GALOIS_PMAX = 40
 
 z = sp.Symbol("z")
@@ -141,80 +142,6 @@ def without_double_root(den: sp.Poly, point) -> sp.Poly:
     return quotient
 
 
-MI = flint.fmpq_mpoly_ctx.get(("m", "i"), "lex")
-M_, I_ = MI.gens()
-I2 = I_**2 + 1
-
-
-def _mi(expr) -> object:
-    """A SymPy polynomial in m (Gaussian rational coefficients) as an element of Q[m, i]."""
-    poly = sp.Poly(sp.expand(expr), m)
-    total = MI.constant(0)
-    for (k,), coefficient in poly.terms():
-        re, im = (sp.Rational(v) for v in sp.expand(coefficient).as_real_imag())
-        total += (flint.fmpq(int(re.p), int(re.q)) + flint.fmpq(int(im.p), int(im.q)) * I_) * M_**k
-    return total
-
-
-MIP = flint.fmpq_mpoly_ctx.get(("m", "i", "p"), "lex")
-
-
-def _mip(expr) -> object:
-    """A SymPy polynomial in m, p (Gaussian rational coefficients) as an element of Q[m, i, p]."""
-    poly = sp.Poly(sp.expand(expr), m, p)
-    mm_, ii_, pp_ = MIP.gens()
-    total = MIP.constant(0)
-    for (k, l), coefficient in poly.terms():
-        re, im = (sp.Rational(v) for v in sp.expand(coefficient).as_real_imag())
-        total += (flint.fmpq(int(re.p), int(re.q)) + flint.fmpq(int(im.p), int(im.q)) * ii_) * mm_**k * pp_**l
-    return total
-
-
-def _red(poly):
-    return divmod(poly, I2)[1]
-
-
-def log_obstruction_fraction_free(num_coeffs: list, den_coeffs: list, point, delta: int):
-    """Numerator of the Frobenius obstruction at a double root ``point`` of den, in Q[m, i]/(i^2+1).
-
-    ``num_coeffs``/``den_coeffs``: coefficients (low to high, in z) as elements of Q[m, i], den with the
-    factor (z - point)^2 already removed.  Taylor coefficients a_k, b_k at the point; with b0 = b_0,
-    R_k = b0^(k+1) r_k and Y_k = b0^(2k) y_k satisfy
-    R_k = a_k b0^k - sum_{j>=1} b_j b0^(j-1) R_{k-j},  Y_k = (1/beta_k) sum_j R_j Y_{k-j} b0^(j-1),
-    and the obstruction is (sum_{j=1}^{delta} R_j Y_{delta-j} b0^(j-1)) / b0^(2 delta).  Only rational
-    divisions (beta_k = (mu+k)(mu+k-1) - (delta^2-1)/4): fast and exact.
-    """
-    def shifted(coeffs):
-        coeffs, out = list(coeffs[::-1]), []
-        while coeffs:
-            acc, quotient = MI.constant(0), []
-            for c in coeffs:
-                acc = _red(acc * point + c)
-                quotient.append(acc)
-            out.append(quotient.pop())
-            coeffs = quotient
-        return out + [MI.constant(0)] * (delta + 1)
-
-    a, b = shifted(num_coeffs), shifted(den_coeffs)
-    b0 = b[0]
-    powers = [MI.constant(1)]
-    for _ in range(2 * delta + 2):
-        powers.append(_red(powers[-1] * b0))
-    R = []
-    for k in range(delta + 1):
-        value = a[k] * powers[k] - sum((b[j] * powers[j - 1] * R[k - j] for j in range(1, k + 1)), MI.constant(0))
-        R.append(_red(value))
-    r0 = flint.fmpq(delta * delta - 1, 4)
-    mu = flint.fmpq(1 - delta, 2)
-    S = [None] + [_red(R[j] * powers[j - 1]) for j in range(1, delta + 1)]  # R_j b0^(j-1), once
-    Y = [MI.constant(1)]
-    for k in range(1, delta):
-        beta = (mu + k) * (mu + k - 1) - r0
-        Y.append(_red(sum((S[j] * Y[k - j] for j in range(1, k + 1)), MI.constant(0)) * (1 / beta)))
-    obstruction = _red(sum((S[j] * Y[delta - j] for j in range(1, delta + 1)), MI.constant(0)))
-    return _red(R[0] - r0 * powers[1]), obstruction
-
-
 POINTS = {"s0": sp.Integer(0), "s1": sp.I, "s2": -sp.I, "s3": -sp.I * m, "s4": -sp.I / m}
 
 
@@ -227,58 +154,56 @@ def reduced_form():
             sp.expand(Qd.as_expr().subs(cc, c_m) * (2 * m) ** 10))
 
 
+w = sp.Symbol("w")
+# s2 follows from s1 by (w, m) -> (-w, -m) and s4 from s3 by m -> 1/m, both certified in run
+POINTS_W = {"s1": sp.Integer(1), "s3": -m}
+
+
+@functools.cache
+def rotated_form():
+    """``(num_w, den_w)``: ``-r(i w) = num_w/den_w``, polynomials in w, m, p with rational coefficients.
+
+    ``z = i w`` turns ``y_zz = r(z) y`` into ``y_ww = -r(i w) y`` (logarithms are preserved: the local
+    solutions correspond one to one), and the reduced form becomes real: no Gaussian arithmetic.
+    """
+    num_e, den_e = reduced_form()
+    return sp.expand(-num_e.subs(z, sp.I * w)), sp.expand(den_e.subs(z, sp.I * w))
+
+
+def _m_poly(expr) -> flint.fmpq_poly:
+    """A SymPy polynomial in m with rational coefficients as a python-flint ``fmpq_poly``."""
+    coeffs = sp.Poly(expr, m).all_coeffs()[::-1] if expr != 0 else []
+    return flint.fmpq_poly([flint.fmpq(int(sp.Rational(c).p), int(sp.Rational(c).q)) for c in coeffs])
+
+
 @functools.cache
 def _obstruction_data():
     """The p-independent flint data of the per-p decision (built once per process)."""
-    num_e, den_e = reduced_form()
-    rests = {name: [_mi(c) for c in sp.Poly(sp.cancel(den_e / (z - POINTS[name]) ** 2), z).all_coeffs()[::-1]]
-             for name in ("s1", "s2", "s3")}
-    num_mip = [_mip(c) for c in sp.Poly(num_e, z).all_coeffs()[::-1]]
-    return num_mip, rests, {"s1": I_, "s2": -I_, "s3": -I_ * M_}
-
-
-EVAL_M = 3   # where an even p's obstruction is evaluated first (m = 3: d = 4/3)
-
-
-def _nonzero_at(m_value: int, num_p: list, rest: list, point, delta: int) -> bool:
-    """True if the obstruction's value at m = ``m_value`` is non-zero (then the obstruction is).
-
-    Substituting m is a ring homomorphism Q(i)[m] -> Q(i) that commutes with every step of
-    :func:`log_obstruction_fraction_free` (ring operations and rational constants only), so the
-    recursion run on the substituted coefficients yields the obstruction's value; a non-zero
-    value proves a non-zero obstruction, a zero value proves nothing (the caller then computes
-    the polynomial).  170 times faster than the polynomial at p = 40: the obstruction has
-    m-degree 28p - 1 there.
-    """
-    at = MI.constant(m_value)
-    substitute = lambda c: _red(c.compose(at, I_, ctx=MI))  # noqa: E731
-    point_value = substitute(point)
-    check, value = log_obstruction_fraction_free([substitute(c) for c in num_p], [substitute(c) for c in rest],
-                                                 point_value, delta)
-    if not check.is_zero():
-        raise ArithmeticError(f"m = {m_value}: r_0 != (delta^2-1)/4")
-    return not value.is_zero()
+    num_w, den_w = rotated_form()
+    numerator = [{k: _m_poly(v) for (k,), v in sp.Poly(c, p).terms()} for c in sp.Poly(num_w, w).all_coeffs()[::-1]]
+    rests = {name: [_m_poly(c) for c in sp.Poly(sp.cancel(den_w / (w - pt) ** 2), w).all_coeffs()[::-1]]
+             for name, pt in POINTS_W.items()}
+    return numerator, rests, {name: _m_poly(pt) for name, pt in POINTS_W.items()}
 
 
 def decide_logarithms(p_value: int) -> tuple[dict, float]:
     """Per-p work (run in a worker): ``({s1..s4: "log" | "no log"}, seconds)`` for ``y'' = r y``.
 
-    s4 follows from s3 by the certified symmetry m -> 1/m.  Raises ArithmeticError if a point
-    is not a double pole with r_0 = (delta^2 - 1)/4.
+    The obstruction polynomial of :func:`derivations.local_obstruction.log_obstruction` at w = 1
+    (s1, Delta = p) and w = -m (s3, Delta = 2); s2 and s4 by the certified symmetries.  Raises
+    ArithmeticError if a point is not a double pole with r_0 = (Delta^2 - 1)/4.
     """
-    num_mip, rests, flint_points = _obstruction_data()
+    numerator, rests, points = _obstruction_data()
     verdict = {}
     with stopwatch() as elapsed:
-        num_p = [c.compose(M_, I_, MI.constant(p_value), ctx=MI) for c in num_mip]
-        for name, delta in (("s1", p_value), ("s2", p_value), ("s3", 2)):
-            if name != "s3" and p_value % 2 == 0 and _nonzero_at(EVAL_M, num_p, rests[name], flint_points[name], delta):
-                verdict[name] = "log"   # a non-zero value proves a non-zero polynomial
-                continue
-            check, obstruction = log_obstruction_fraction_free(num_p, rests[name], flint_points[name], delta)
-            if not check.is_zero():
+        num_p = [sum((poly * p_value**k for k, poly in coefficient.items()), flint.fmpq_poly([]))
+                 for coefficient in numerator]
+        for name, delta in (("s1", p_value), ("s3", 2)):
+            r0_ok, obstruction, _ = log_obstruction(num_p, rests[name], points[name], delta)
+            if not r0_ok:
                 raise ArithmeticError(f"p = {p_value}, {name}: r_0 != (delta^2-1)/4")
             verdict[name] = "log" if not obstruction.is_zero() else "no log"
-        verdict["s4"] = verdict["s3"]  # by the m -> 1/m symmetry (certified in run)
+        verdict = {"s1": verdict["s1"], "s2": verdict["s1"], "s3": verdict["s3"], "s4": verdict["s3"]}
     return verdict, elapsed[0]
 
 
@@ -353,6 +278,19 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     swapped = sp.cancel((num_e / den_e).subs(m, 1 / m) - num_e / den_e)
     c_swap = certify_zero(log, "r(z; 1/m) = r(z; m): the parametrisation's m -> 1/m (d -> -d) exchanges s3 and s4",
                           "eq:rlin", swapped, Domain("Q(m,p)(z)[i]"))
+    # the decisions run in w = -i z, where the reduced form is real
+    num_w, den_w = rotated_form()
+    expected_den = 1024 * m**6 * (m**2 - 1) ** 2 * w**2 * (w - 1) ** 2 * (w + 1) ** 2 * (w + m) ** 2 * (m * w + 1) ** 2
+    c_rot = certify_zero(log, "in w = -i z, y_ww = rt(w) y with rt(w) = -r(i w) = N(w)/Q(w) real (in Q(m, p)(w)), "
+                         "Q a constant times w^2 (w-1)^2 (w+1)^2 (w+m)^2 (mw+1)^2: double poles at w = 0, 1, -1, -m, "
+                         "-1/m, i.e. z = s0, s1, s2, s3, s4", "eq:rlin, eq:Q",
+                         [num_w - num_w.xreplace({sp.I: -sp.I}), den_w - den_w.xreplace({sp.I: -sp.I}),
+                          den_w - sp.expand(expected_den)],
+                         Domain("Q(m,p)[w]"))
+    mirrored = sp.cancel((num_w / den_w).subs({w: -w, m: -m}, simultaneous=True) - num_w / den_w)
+    c_mirror = certify_zero(log, "rt(-w; -m) = rt(w; m): w -> -w maps s1 (w = 1) to s2 (w = -1) with m -> -m, so "
+                            "the obstruction at s2 is the one at s1 with m -> -m (zero iff it is)", "eq:rlin",
+                            mirrored, Domain("Q(m,p)(w)"))
     # the per-p decisions are independent: run in parallel (CertificateLog.map_per_p), recorded in p order
     values = list(range(1, galois_pmax + 1))
     decisions = log.map_per_p("logarithms at s1..s4", values, decide_logarithms)
@@ -360,20 +298,22 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         conjecture = ("no log" if p_value % 2 else "log")
         ok = verdict["s1"] == verdict["s2"] == conjecture and verdict["s3"] == verdict["s4"] == "no log"
         cert = log.record(Certificate(
-            f"p = {p_value}: s1, s2 {'non-logarithmic' if p_value % 2 else 'logarithmic'}, s3, s4 non-logarithmic "
-            "(for every d > 0)", "Conjecture 5.2", "exact Frobenius obstruction in QQ_I(m), c,d = (m^2+-1)/(2m)"
-            + ("" if p_value % 2 else f"; non-zero at s1, s2 shown by its exact value at m = {EVAL_M}"),
+            f"p = {p_value}: s1, s2 " + ("non-logarithmic for every d > 0" if p_value % 2 else
+                                         "logarithmic for all but finitely many d > 0")
+            + ", s3, s4 non-logarithmic for every d > 0", "Conjecture 5.2",
+            "exact Frobenius obstruction in Q(m) at w = 1 and w = -m (w = -i z, c, d = (m^2+-1)/(2m)), "
+            "denominators cleared by the least E with den(r_j) | E^j (derivations.local_obstruction)",
             Outcome.PASS if ok else Outcome.FAIL, seconds, 4,
             ", ".join(f"{k}: {v}" for k, v in verdict.items())))
         rows.append({"p": p_value, "s1": verdict["s1"], "s2": verdict["s2"], "s3": verdict["s3"], "s4": verdict["s4"],
                      "certificate": cert.key})
     result.formula("conjecture", "Conjecture 5.2", f"Logarithms at $s_1,\\dots,s_4$ for $p\\le{galois_pmax}$",
-                   r"s_1,s_2\text{ logarithmic}\iff p\text{ even};\quad s_3,s_4\text{ never}", c_swap,
+                   r"s_1,s_2\text{ logarithmic}\iff p\text{ even};\quad s_3,s_4\text{ never}", c_swap, c_rot, c_mirror,
                    *[c for c in log.certificates if c.derivation == NAME and c.label == "Conjecture 5.2"])
     result.notes.append(
         f"Conjecture (section 5.2) decided for every p <= {galois_pmax}: s1, s2 are logarithmic exactly for even p; "
         "s3, s4 never. The obstruction for odd p vanishes identically in m (all d > 0); for even p it is a non-zero "
-        "element of Q(m)(i), so logarithms occur for all but finitely many d (and the Frobenius recursion of the "
+        "element of Q(m), so logarithms occur for all but finitely many d (and the Frobenius recursion of the "
         "Poisson system itself, section 3.2, shows them for every d > 0). A proof for all p would need the obstruction "
         "in closed form as a function of p, e.g. from the explicit solutions for odd p and a contiguity relation in p.")
 
