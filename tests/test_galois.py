@@ -56,12 +56,11 @@ def _reference_obstruction_is_zero(p_value, point, delta):
     num_e, den_e = galois.reduced_form()
     zeta, m = sp.Symbol("zeta"), galois.m
     K = sp.QQ_I.frac_field(m)
-    r = (num_e / den_e).subs(galois.p, p_value)
     shifted = sp.Poly(sp.expand(num_e.subs(galois.p, p_value).subs(galois.z, point + zeta)), zeta, domain=K)
-    rest = sp.Poly(sp.expand(den_e.subs(galois.z, point + zeta)), zeta, domain=K).exquo(sp.Poly(zeta**2, zeta, domain=K))
+    rest = sp.Poly(sp.expand(den_e.subs(galois.z, point + zeta)), zeta, domain=K)
+    rest = rest.exquo(sp.Poly(zeta**2, zeta, domain=K))
     a = [shifted.coeff_monomial(zeta**k) for k in range(delta + 1)]
     b = [rest.coeff_monomial(zeta**k) for k in range(delta + 1)]
-    del r
     rk = []
     for k in range(delta + 1):
         rk.append((K.convert(a[k]) - sum((K.convert(b[j]) * rk[k - j] for j in range(1, k + 1)), K.zero))

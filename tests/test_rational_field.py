@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 from derivations import residue
 from derivations.rational_field import LaurentQD
-from derivations.symbols import d   # the symbol the recursion returns its obstructions in
+from derivations.symbols import d  # the symbol the recursion returns its obstructions in
 
 coefficients = st.lists(st.fractions(min_value=-5, max_value=5, max_denominator=7), min_size=1, max_size=4)
 shifts = st.integers(min_value=-3, max_value=3)
