@@ -10,7 +10,7 @@ certificate)``: a spot check cannot prove a bound.  The seeds are fixed, so the
 certificate log is deterministic.
 
 Also checked: ``gamma_basis_mp`` against an independent evaluation of the certified
-numerators (``derivations.meromorphic.basis_mp``: SymPy ``lambdify`` of the flint objects)
+numerators (``derivations.meromorphic_printed.basis_mp``: SymPy ``lambdify`` of the flint objects)
 for p <= 15, the rows of ``gamma_basis`` form a rotation (det +1), ``special_case_parameters``
 chains into ``omega`` (the body's own general solution, in the returned frame, equals
 ``omega(t, p, d)`` with p > 0), and ``meromorphy`` agrees with ``kovalevskaya_exponents``.
@@ -124,7 +124,7 @@ def check_gamma_basis(log: CertificateLog, module, p: int, basis=None) -> list:
                          "gamma_basis_mp, and det = +1 (a rotation) to 1e-12", worst <= 1 and worst_det <= 1e-12,
                          elapsed[0], points, worst))
     if basis is not None:
-        from .meromorphic import basis_mp
+        from .meromorphic_printed import basis_mp
 
         worst = 0.0
         with stopwatch() as elapsed:

@@ -128,7 +128,7 @@ def _special_parameters(ctx, I11, I22, I23):
 def _scattering_angle(ctx, x, s, c):
     """Delta psi from x = pi |p|/(2d), s = |sin(pi p/2)|, c = |cos(pi p/2)| (Theorem 5.2, evaluation form).
 
-    Emitted from the certified expression; certificates: scattering:248, scattering:238, scattering:244.
+    Emitted from the certified expression; certificates: scattering:249, scattering:239, scattering:245.
     """
     return 2*ctx.atan2(ctx.sqrt((s*s)*(ctx.sech(x)*ctx.sech(x)) + (ctx.tanh(x)*ctx.tanh(x))), c*ctx.sech(x))
 
@@ -570,7 +570,7 @@ def scattering_angle(p: ArrayLike, d: ArrayLike) -> np.ndarray:
         cos(Delta psi / 2) = |cos(pi p/2)| / cosh(pi p/(2 d)),   cos(Delta psi) = -gamma1(+oo)
 
     (the paper's undefined ``q`` is ``d``; odd p gives Delta psi = pi).  Certified:
-    angle scattering:238, route scattering:244, stable scattering:248.
+    angle scattering:239, route scattering:245, stable scattering:249.
 
     Evaluated as ``2 atan2(sqrt(tanh^2 x + s^2 sech^2 x), c sech x)`` with
     ``x = pi |p|/(2d)`` and ``s``, ``c`` = ``|sin|``, ``|cos|`` of ``pi p/2`` with p reduced
