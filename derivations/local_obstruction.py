@@ -14,13 +14,14 @@ the *obstruction* ``sum_{j=1}^{Delta} r_j y_{Delta-j}``, must be zero for a solu
 logarithm.  It is an element of Q(m); zero (as a rational function) means no logarithm for every
 m, non-zero means a logarithm for all but finitely many m.
 
-1. ``r_k`` are computed as reduced fractions (python-flint ``fmpq_poly`` numerator and
-   denominator, gcd after every step) from the Taylor coefficients of the numerator and of the
-   denominator with the double root removed: the denominator has low degree in w, so this is
-   O(Delta) fraction operations.
-2. A *clearing factor* ``E`` in Q[m] is read off the factored denominators: every irreducible
-   factor f with multiplicity e in den(r_j) gets exponent ``max_j ceil(e / j)``, so that
-   ``T_j = r_j E^j`` is a polynomial (checked by exact division, never assumed).
+1. The first ``r_k`` are computed as reduced fractions (python-flint ``fmpq_poly`` numerator
+   and denominator, gcd after every step) from the Taylor coefficients of the numerator and of
+   the denominator with the double root removed.
+2. A *clearing factor* ``E`` in Q[m] is read off the factored denominators of the first
+   ``PROBE`` coefficients: every irreducible factor f with multiplicity e in den(r_j) gets
+   exponent ``max_j ceil(e / j)``.  Then ``T_j = r_j E^j`` follow from the Taylor recursion times
+   E^j by exact divisions by the leading coefficient (a remainder means E does not clear that
+   order, and the reduced fractions of step 1 are used for every order instead: never assumed).
 3. ``Y_k = y_k E^k`` then obeys ``beta_k Y_k = sum_j T_j Y_{k-j}``, a recursion in Q[m] without
    any gcd, and ``E^Delta * obstruction = sum_j T_j Y_{Delta-j}``.  E is non-zero, so the
    obstruction is zero exactly when this polynomial is.
@@ -95,22 +96,58 @@ def clearing_factor(fractions: list) -> object:
     return E
 
 
+PROBE = 12   # terms computed as reduced fractions to find the clearing factor
+
+
+def cleared_coefficients(num: list, rest: list, point, order: int) -> tuple[list, object]:
+    """``([T_0, ..., T_order], E)`` with ``T_k = r_k E^k`` in Q[m], by exact divisions only.
+
+    E is the :func:`clearing_factor` of the first ``PROBE`` coefficients (reduced fractions, cheap
+    at low order).  Multiplying the Taylor recursion ``b0 r_k = a_k - sum_j b_j r_{k-j}`` by E^k gives
+    ``b0 T_k = a_k E^k - sum_j b_j E^j T_{k-j}``: when each right-hand side is divisible by b0 the
+    quotients are exactly the T_k (the recursion determines them uniquely), with no gcd.  If a
+    division leaves a remainder, E does not clear that order and every r_k is computed as a reduced
+    fraction instead (slower, same result).
+    """
+    probe = laurent_fractions(num, rest, point, min(order, PROBE))
+    E = clearing_factor(probe)
+    a = taylor_shift(num, point) + [ZERO] * (order + 1)
+    b = taylor_shift(rest, point)
+    powers = [ONE]
+    for _ in range(max(order, len(b))):
+        powers.append(powers[-1] * E)
+    T = []
+    for k in range(order + 1):
+        rhs = a[k] * powers[k]
+        for j in range(1, min(k, len(b) - 1) + 1):
+            rhs -= b[j] * powers[j] * T[k - j]
+        quotient, remainder = divmod(rhs, b[0])
+        if not remainder.is_zero():
+            return _cleared_from_fractions(laurent_fractions(num, rest, point, order))
+        T.append(quotient)
+    return T, E
+
+
+def _cleared_from_fractions(fractions: list) -> tuple[list, object]:
+    E = clearing_factor(fractions)
+    T, power = [], ONE
+    for k, (n, d) in enumerate(fractions):
+        quotient, remainder = divmod(n * power, d)
+        if not remainder.is_zero():
+            raise ArithmeticError(f"the clearing factor does not clear r_{k}")
+        T.append(quotient)
+        power = power * E
+    return T, E
+
+
 def log_obstruction(num: list, rest: list, point, delta: int) -> tuple[bool, object, object]:
     """``(r0_ok, P, E)``: whether ``r_0 = (delta^2 - 1)/4`` and ``P = E^delta * obstruction`` in Q[m].
 
     ``P`` is zero exactly when the local solutions at the point have no logarithm for every m.
     """
-    fractions = laurent_fractions(num, rest, point, delta)
+    T, E = cleared_coefficients(num, rest, point, delta)
     r0 = flint.fmpq(delta * delta - 1, 4)
-    r0_ok = fractions[0][1].is_one() and fractions[0][0] == r0
-    E = clearing_factor(fractions)
-    T, power = [None], ONE
-    for n, d in fractions[1:]:
-        power = power * E
-        quotient, remainder = divmod(n * power, d)
-        if not remainder.is_zero():
-            raise ArithmeticError("the clearing factor does not clear a denominator")
-        T.append(quotient)
+    r0_ok = T[0] == r0
     mu = flint.fmpq(1 - delta, 2)
     Y = [ONE]
     for k in range(1, delta):

@@ -45,6 +45,7 @@ of rows gamma^(1), gamma^(2), gamma^(3) has determinant +1.
 """
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 
 import flint
@@ -289,25 +290,36 @@ def genhip_check(log: CertificateLog, p: int) -> Certificate:
 KEEP_BASES = 15   # bases up to this p are built in the main process and kept (printed examples, tables)
 
 
+def numerators_digest(real_M: list, complex_M: list) -> str:
+    """SHA-256 of python-flint's printed form of the six numerators: the fingerprint by which the round
+    trip compares the emitted module's core with bases certified in another process (at p = 101 the
+    numerators print as 31 MB; shipping them between processes cost more than certifying them)."""
+    digest = hashlib.sha256()
+    for poly in list(real_M) + list(complex_M):
+        digest.update(str(poly).encode())
+        digest.update(b";")
+    return digest.hexdigest()
+
+
 def basis_for_p(p: int) -> dict:
     """Per-p work (run in a worker): the certificates of :func:`genhip_check` and :func:`certify_p`.
 
     Returns plain data (python-flint objects do not pickle): the certificates (keys left to the
-    main log, which records them in p order), sigma, and the numerators as ``{exponents: (num,
-    den)}`` dicts.  A certificate with an unexpected outcome is returned too, not raised: the main
-    log raises when it records it, exactly as a serial build would.
+    main log, which records them in p order), sigma, the numerators' term counts and their
+    :func:`numerators_digest`.  A certificate with an unexpected outcome is returned too, not raised:
+    the main log raises when it records it, exactly as a serial build would.
     """
     private = CertificateLog(derivation=NAME)
-    sigma, numerators = 0, ([], [])
+    sigma, terms, digest = 0, [], ""
     try:
         genhip_check(private, p)
         basis = certify_p(private, p)
         sigma = basis.sigma
-        numerators = tuple([{e: (int(c.p), int(c.q)) for e, c in m.to_dict().items()} for m in sol.M]
-                           for sol in (basis.real, basis.complex_))
+        terms = [len(m) for m in basis.real.M + basis.complex_.M]
+        digest = numerators_digest(basis.real.M, basis.complex_.M)
     except CertificationFailure:
         pass
-    return {"certificates": private.handed_over(), "sigma": sigma, "numerators": numerators}
+    return {"certificates": private.handed_over(), "sigma": sigma, "terms": terms, "digest": digest}
 
 
 def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
@@ -335,12 +347,11 @@ def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
         rows.append({"p": p, "sigma": basis.sigma, "certificates": [c_f1.key] + [c.key for c in basis.certificates],
                      "terms": [len(m) for m in basis.real.M + basis.complex_.M]})
     later = [q for q in odd if q > KEEP_BASES]
+    digests = {}
     for p, outcome in zip(later, log.map_per_p("bases", later, basis_for_p)):
         keys = [log.record(c).key for c in outcome["certificates"]]   # raises at a failed one, as in serial
-        objects[p] = tuple([CTX.from_dict({e: flint.fmpq(*v) for e, v in m.items()}) for m in part]
-                           for part in outcome["numerators"])
-        rows.append({"p": p, "sigma": outcome["sigma"], "certificates": keys,
-                     "terms": [len(m) for m in objects[p][0] + objects[p][1]]})
+        digests[p] = outcome["digest"]
+        rows.append({"p": p, "sigma": outcome["sigma"], "certificates": keys, "terms": outcome["terms"]})
     if 3 in bases:
         printed_comparisons(log, result, bases[3].certificates[2])
     compare_printed_examples(log, result, bases)
@@ -350,5 +361,5 @@ def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
         result.formula(f"basis{p}", "gam1, gam2, gam3, eq:gam3", f"Orthonormal basis for $p={p}$ ($c=\\sqrt{{d^2+1}}$)",
                        written_out(basis),
                        *[c for c in log.certificates if c.key in rows[(p - 1) // 2]["certificates"]])
-    result.exports.update(objects=objects, bases=bases, rows=rows, sigma={r["p"]: r["sigma"] for r in rows}, tables=coefficient_tables(options))
+    result.exports.update(objects=objects, digests=digests, bases=bases, rows=rows, sigma={r["p"]: r["sigma"] for r in rows}, tables=coefficient_tables(options))
     return result

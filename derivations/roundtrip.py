@@ -164,7 +164,10 @@ def certify_integral_core(log: CertificateLog, module, objects: dict) -> list:
     return out
 
 
-def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
+def certify_basis_core(log: CertificateLog, module, objects: dict, digests: dict, directory: Path) -> list:
+    """The emitted ``_basis_core`` against the certified numerators: exact equality for the bases kept
+    in this process (``objects``), equal :func:`derivations.meromorphic.numerators_digest` for those
+    certified in workers (``digests``), checked in workers too (:func:`basis_core_check`)."""
     out = []
     for p, (real, cplx) in sorted(objects.items()):
         with stopwatch() as elapsed:
@@ -176,7 +179,37 @@ def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
                            "and V", "round trip", "exact equality in Q[x,d,i]/(i^2+1) (python-flint)", not differing,
                            elapsed[0], sum(len(m) for m in real + cplx),
                            "differs: " + ", ".join(differing) if differing else "identical"))
+    tasks = [(str(directory), p, digest) for p, digest in sorted(digests.items())]
+    for cert in log.map_per_p("round trip: bases", tasks, basis_core_check, cacheable=False):
+        out.append(log.record(cert))
     return out
+
+
+def basis_core_check(task) -> Certificate:
+    """Per-p work (run in a worker): ``task = (directory, p, digest)``; the emitted module's core
+    numerators for p, fingerprinted as the certifying worker fingerprinted its own."""
+    from .meromorphic import numerators_digest
+
+    directory, p, digest = task
+    with stopwatch() as elapsed:
+        real, cplx = load_module_once(directory)._basis_core(p, BASIS_RING)
+        same = numerators_digest(real.M, cplx.M) == digest
+    # returned, not recorded: the main log records it in p order (and raises there if it failed)
+    return Certificate(f"p = {p}: gamma_basis's exact core reproduces the certified numerators of gamma^(1) and V",
+                       "round trip", "equal SHA-256 of python-flint's printed numerators (the certifying worker's "
+                       "and the emitted core's)", Outcome.PASS if same else Outcome.FAIL, elapsed[0],
+                       sum(len(m) for m in real.M + cplx.M), "identical" if same else "differs")
+
+
+_modules: dict = {}
+
+
+def load_module_once(directory) -> object:
+    """:func:`load_module`, once per process and directory (per-p workers check one emitted module)."""
+    key = str(directory)
+    if key not in _modules:
+        _modules[key] = load_module(Path(key))
+    return _modules[key]
 
 
 # ------------------------------------------------------------------ orchestration
@@ -192,7 +225,8 @@ def certify_module(log: CertificateLog, build, directory: Path) -> list:
     with log.section(SECTION), mpmath.workdps(15):
         certs = certify_emitted(log, module, emitted_formulas(build))
         certs += certify_integral_core(log, module, build.results["first_integrals"].exports["objects"])
-        certs += certify_basis_core(log, module, build.results["meromorphic"].exports["objects"])
+        exports = build.results["meromorphic"].exports
+        certs += certify_basis_core(log, module, exports["objects"], exports.get("digests", {}), directory)
         certs += float_paths.certify(log, module, build, directory)
     return certs
 

@@ -6,11 +6,10 @@ matrix exactly when there is no logarithm (otherwise it is a non-trivial Jordan 
 """
 import numpy as np
 import pytest
+from conftest import circle_monodromy
 
 from derivations.options import BuildOptions
 from derivations.pipeline import derive
-
-from conftest import circle_monodromy
 
 
 def monodromy(p, d, center=1j, radius=0.3):
@@ -95,7 +94,11 @@ def test_clearing_factor_and_a_planted_logarithm():
     with e = 0 Euler's equation (no logarithm), with e = 1/(m+1) a logarithm for every m."""
     import flint
 
-    from derivations.local_obstruction import clearing_factor, laurent_fractions, log_obstruction
+    from derivations.local_obstruction import (
+        clearing_factor,
+        laurent_fractions,
+        log_obstruction,
+    )
 
     one, m = flint.fmpq_poly([1]), flint.fmpq_poly([0, 1])
     zero = flint.fmpq_poly([])
@@ -106,3 +109,22 @@ def test_clearing_factor_and_a_planted_logarithm():
     fractions = laurent_fractions([2 * (m + 1), one], [m + 1], zero, 3)
     assert E == clearing_factor(fractions) == m + 1
     assert not log_obstruction([2 * one, zero], [one], zero, 5)[0]   # r_0 = 2 is not (25 - 1)/4
+
+
+@pytest.mark.parametrize("probe", [1, 12])
+def test_cleared_coefficients_by_exact_division_equal_reduced_fractions(monkeypatch, probe):
+    """T_k = r_k E^k from exact divisions equal the reduced fractions times E^k; with a probe too short
+    to see the denominators (PROBE = 1: E = 1 from r_0, r_1 alone) a division leaves a remainder and
+    the fallback through reduced fractions gives the same T_k and E."""
+    import flint
+
+    from derivations import galois, local_obstruction
+
+    monkeypatch.setattr(local_obstruction, "PROBE", probe)
+    numerator, rests, points = galois._obstruction_data()
+    for p_value in (5, 8, 23):
+        num_p = [sum((poly * p_value**k for k, poly in c.items()), flint.fmpq_poly([])) for c in numerator]
+        fractions = local_obstruction.laurent_fractions(num_p, rests["s1"], points["s1"], p_value)
+        T, E = local_obstruction.cleared_coefficients(num_p, rests["s1"], points["s1"], p_value)
+        assert E == flint.fmpq_poly([-1, 0, 1])
+        assert all(t * d == n * E**k for k, (t, (n, d)) in enumerate(zip(T, fractions)))

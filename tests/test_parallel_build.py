@@ -39,15 +39,35 @@ def test_jobs_must_be_positive():
         BuildOptions(jobs=0)
 
 
-def test_bases_beyond_15_come_back_from_workers_intact(tmp_path):
-    """p = 17..31: the meromorphic bases are certified in workers and their numerators rebuilt here;
-    the round trip of the emitted module (which compares its exact cores with these numerators for
-    every p) and the log are the same as in one process."""
+def test_bases_beyond_15_are_fingerprinted_in_workers(tmp_path):
+    """p = 17..31: the meromorphic bases are certified in workers, which send back the SHA-256 of their
+    numerators (not the numerators: 31 MB of text at p = 101); the log is the same as in one process
+    and each fingerprint is that of the basis constructed here, in this process."""
     serial = derive(BuildOptions(pmax=31, jobs=1), ["meromorphic"])
     parallel = derive(BuildOptions(pmax=31, jobs=2), ["meromorphic"])
     assert records(serial) == records(parallel)
-    objects = parallel.results["meromorphic"].exports["objects"]
-    assert sorted(objects) == list(range(1, 32, 2))
-    for p in (17, 31):   # rebuilt from the workers' dicts == constructed here, in this process
+    digests = parallel.results["meromorphic"].exports["digests"]
+    assert sorted(digests) == list(range(17, 32, 2))
+    assert sorted(parallel.results["meromorphic"].exports["objects"]) == list(range(1, 16, 2))
+    for p in (17, 31):
         real, cplx = meromorphic.construct(p)
-        assert list(objects[p][0]) == list(real.M) and list(objects[p][1]) == list(cplx.M)
+        assert digests[p] == meromorphic.numerators_digest(real.M, cplx.M)
+
+
+def test_round_trip_refuses_an_emitted_core_with_another_fingerprint():
+    """The round trip's per-p comparison for bases certified in workers: the committed module's core
+    matches the fingerprint of the basis certified here (p = 17) and is refused against any other."""
+    from pathlib import Path
+
+    from derivations import roundtrip
+    from derivations.certificates import CertificateLog, CertificationFailure, Outcome
+
+    generated = Path(__file__).resolve().parent.parent / "generated"
+    module = roundtrip.load_module(generated)
+    real, cplx = meromorphic.construct(17)
+    right = meromorphic.numerators_digest(real.M, cplx.M)
+    (cert,) = roundtrip.certify_basis_core(CertificateLog(), module, {}, {17: right}, generated)
+    assert cert.outcome is Outcome.PASS and "SHA-256" in cert.method
+    wrong = meromorphic.numerators_digest(cplx.M, real.M)      # the same polynomials, in another order
+    with pytest.raises(CertificationFailure):
+        roundtrip.certify_basis_core(CertificateLog(), module, {}, {17: wrong}, generated)
