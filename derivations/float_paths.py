@@ -203,39 +203,17 @@ def check_meromorphy(log: CertificateLog, module) -> Certificate:
                    "numeric evidence (not a certificate): float64, four bodies")
 
 
-def basis_checks(task) -> list:
-    """Per-p work (run in a worker): the float-path checks of gamma_basis for one p > BASIS_MP_CHECK_MAX.
-
-    ``task = (directory, p)``; the module is imported from the directory (once per process), so the
-    emitted code is what is checked, and the directory must be visible to the worker (local
-    processes; a Dask cluster on the same file system).  Returns the certificates, keys left to the
-    main log.
-    """
-    from .roundtrip import load_module_once
-
-    directory, p = task
-    module = load_module_once(directory)
-    private = CertificateLog(derivation="roundtrip")
-    with mpmath.workdps(15):
-        check_gamma_basis(private, module, p)
-    return private.handed_over()
-
-
-
-def certify(log: CertificateLog, module, build, directory) -> list:
-    """Every float-path check; one per function, and one per p for the per-p functions.
-
-    ``module`` was imported from ``directory``; the gamma_basis checks for p > BASIS_MP_CHECK_MAX run
-    through ``CertificateLog.map_per_p`` (all cores), recorded in p order as a serial run would.
-    """
+def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list:
+    """Every float-path check; one per function, and one per p for the per-p functions, except the p
+    in ``skip`` (bases certified in workers: :func:`derivations.roundtrip.per_p_checks` runs these
+    same checks for them in workers)."""
     certs = [check_omega(log, module), check_omega_general(log, module), check_scattering_angle(log, module),
              check_special_case_chain(log, module), check_meromorphy(log, module)]
-    for p in module.INTEGRAL_PS:   # milliseconds each: not worth a process
-        certs.append(check_first_integral(log, module, p))
+    for p in module.INTEGRAL_PS:
+        if p not in skip:
+            certs.append(check_first_integral(log, module, p))
     bases = build.results["meromorphic"].exports.get("bases", {})
-    for p in [q for q in module.BASIS_PS if q <= BASIS_MP_CHECK_MAX]:
-        certs += check_gamma_basis(log, module, p, bases.get(p))
-    tasks = [(str(directory), p) for p in module.BASIS_PS if p > BASIS_MP_CHECK_MAX]
-    for batch in log.map_per_p("float paths: bases", tasks, basis_checks, cacheable=False):
-        certs += [log.record(c) for c in batch]
+    for p in module.BASIS_PS:
+        if p not in skip:
+            certs += check_gamma_basis(log, module, p, bases.get(p) if p <= BASIS_MP_CHECK_MAX else None)
     return certs

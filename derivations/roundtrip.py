@@ -164,10 +164,8 @@ def certify_integral_core(log: CertificateLog, module, objects: dict) -> list:
     return out
 
 
-def certify_basis_core(log: CertificateLog, module, objects: dict, digests: dict, directory: Path) -> list:
-    """The emitted ``_basis_core`` against the certified numerators: exact equality for the bases kept
-    in this process (``objects``), equal :func:`derivations.meromorphic.numerators_digest` for those
-    certified in workers (``digests``), checked in workers too (:func:`basis_core_check`)."""
+def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
+    """The emitted ``_basis_core`` against the certified numerators kept in this process: exact equality."""
     out = []
     for p, (real, cplx) in sorted(objects.items()):
         with stopwatch() as elapsed:
@@ -179,36 +177,64 @@ def certify_basis_core(log: CertificateLog, module, objects: dict, digests: dict
                            "and V", "round trip", "exact equality in Q[x,d,i]/(i^2+1) (python-flint)", not differing,
                            elapsed[0], sum(len(m) for m in real + cplx),
                            "differs: " + ", ".join(differing) if differing else "identical"))
-    tasks = [(str(directory), p, digest) for p, digest in sorted(digests.items())]
-    for cert in log.map_per_p("round trip: bases", tasks, basis_core_check, cacheable=False):
-        out.append(log.record(cert))
     return out
 
 
-def basis_core_check(task) -> Certificate:
-    """Per-p work (run in a worker): ``task = (directory, p, digest)``; the emitted module's core
-    numerators for p, fingerprinted as the certifying worker fingerprinted its own."""
+def basis_core_by_digest(module, p: int, digest: str) -> Certificate:
+    """The emitted core's numerators for p against :func:`derivations.meromorphic.numerators_digest` of
+    the basis certified in another process; returned, not recorded (the caller records it in p order)."""
     from .meromorphic import numerators_digest
 
-    directory, p, digest = task
     with stopwatch() as elapsed:
-        real, cplx = load_module_once(directory)._basis_core(p, BASIS_RING)
+        real, cplx = module._basis_core(p, BASIS_RING)
         same = numerators_digest(real.M, cplx.M) == digest
-    # returned, not recorded: the main log records it in p order (and raises there if it failed)
     return Certificate(f"p = {p}: gamma_basis's exact core reproduces the certified numerators of gamma^(1) and V",
                        "round trip", "equal SHA-256 of python-flint's printed numerators (the certifying worker's "
                        "and the emitted core's)", Outcome.PASS if same else Outcome.FAIL, elapsed[0],
                        sum(len(m) for m in real.M + cplx.M), "identical" if same else "differs")
 
 
+def per_p_checks(task) -> list:
+    """Per-p work (run in a worker) for a p whose basis was certified in a worker: ``task = (directory,
+    p, digest)``.  The core by fingerprint (:func:`basis_core_by_digest`), then the float-path checks
+    of ``first_integral`` and ``gamma_basis`` (:mod:`derivations.float_paths`).  The module is
+    imported from the directory once per process, so the emitted code is what is checked, and the
+    directory must be visible to the worker (local processes; a Dask cluster on the same file
+    system).  Returns the certificates, keys left to the main log."""
+    from . import float_paths
+
+    directory, p, digest = task
+    module = load_module_once(directory)
+    private = CertificateLog(derivation=SECTION)
+    certs = [basis_core_by_digest(module, p, digest)]
+    try:
+        with mpmath.workdps(15):
+            if p in module.INTEGRAL_PS:
+                float_paths.check_first_integral(private, module, p)
+            float_paths.check_gamma_basis(private, module, p)
+    except CertificationFailure:
+        pass   # returned with the others: the main log raises when it records it, as in one process
+    for cert in certs:
+        cert.derivation = cert.key = ""
+    return certs + private.handed_over()
+
+
 _modules: dict = {}
 
 
 def load_module_once(directory) -> object:
-    """:func:`load_module`, once per process and directory (per-p workers check one emitted module)."""
-    key = str(directory)
+    """:func:`load_module`, once per process and module content (per-p workers check one emitted module).
+
+    Keyed by the file's SHA-256, not only its directory: workers outlive a build (the executor keeps
+    its pool), and the next build may stage a different module in the same place.
+    """
+    import hashlib
+
+    path = Path(directory) / "suslov_formulas.py"
+    key = (str(directory), hashlib.sha256(path.read_bytes()).hexdigest())
     if key not in _modules:
-        _modules[key] = load_module(Path(key))
+        _modules.clear()   # one emitted module at a time is all a worker needs
+        _modules[key] = load_module(Path(directory))
     return _modules[key]
 
 
@@ -216,18 +242,27 @@ def load_module_once(directory) -> object:
 
 
 def certify_module(log: CertificateLog, build, directory: Path) -> list:
-    """All round-trip certificates for the module in ``directory`` (raises CertificationFailure)."""
+    """All round-trip certificates for the module in ``directory`` (raises CertificationFailure).
+
+    In this process: the emitted formulas, the exact cores against the objects kept here, and the
+    float paths of those p; the p whose bases were certified in workers get :func:`per_p_checks`
+    through ``CertificateLog.map_per_p`` (all cores, largest p first, recorded in p order).
+    """
     from . import float_paths
     from .pipeline import emitted_formulas
 
     module = load_module(directory)
+    exports = build.results["meromorphic"].exports
+    digests = exports.get("digests", {})
     # the same working precision whatever the caller set: the evidence details are part of the byte-identical outputs
     with log.section(SECTION), mpmath.workdps(15):
         certs = certify_emitted(log, module, emitted_formulas(build))
         certs += certify_integral_core(log, module, build.results["first_integrals"].exports["objects"])
-        exports = build.results["meromorphic"].exports
-        certs += certify_basis_core(log, module, exports["objects"], exports.get("digests", {}), directory)
-        certs += float_paths.certify(log, module, build, directory)
+        certs += certify_basis_core(log, module, exports["objects"])
+        certs += float_paths.certify(log, module, build, skip=set(digests))
+        tasks = [(str(directory), p, digest) for p, digest in sorted(digests.items())]
+        for batch in log.map_per_p("round trip: bases beyond the kept ones", tasks, per_p_checks, cacheable=False):
+            certs += [log.record(c) for c in batch]
     return certs
 
 
