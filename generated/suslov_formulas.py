@@ -548,10 +548,13 @@ def gamma_basis_mp(t, p: int, d, dps: int = 50):
     sigma = _BASIS_SIGMA[p]
     with mpmath.workdps(dps + 10):
         th = 2 * mpmath.atan(mpmath.exp(-t))
+        # cos k th, sin k th once for the 15 series of this call (each was recomputing them)
+        cosines = [mpmath.cos(k * th) for k in range(p + 1)]
+        sines = [mpmath.sin(k * th) for k in range(p + 1)]
 
         def series(part):
             alpha, beta = part
-            return mpmath.fsum(alpha[k] * mpmath.cos(k * th) + beta[k] * mpmath.sin(k * th) for k in range(p + 1))
+            return mpmath.fsum(alpha[k] * cosines[k] + beta[k] * sines[k] for k in range(p + 1))
 
         out = mpmath.matrix(3, 3)
         phase_mp = p * t / d
