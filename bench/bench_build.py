@@ -1,23 +1,27 @@
 """What the build costs as pmax grows (issue 13): time and peak memory per derivation, one process vs all cores.
 
-For each pmax, ``python build_formulas.py --pmax N --out TMP`` runs twice in a subprocess: with
-``--jobs 1`` (everything in one process, the old way) and with the default (the per-p
-certificates on all cores through ``suslov.executor``).  Per derivation: the seconds the build
-reports; for the run: wall time and the peak resident memory of the largest process
+For each pmax, ``python build_formulas.py --pmax N --out TMP`` runs in a subprocess: with
+``--jobs 1`` (everything in one process, the old way), with the default (the per-p certificates on
+all cores through ``suslov.executor``), both cold, and the all-cores command again with the cache
+it filled (the warm rebuild).  ``--baseline REV`` also builds an older revision (a git worktree,
+its own packages first on the path) on all cores in the same run, so the speed-up is measured
+side by side on the same machine state.  Per derivation: the seconds the build reports; for the
+run: wall time and the peak resident memory of the largest process
 (``getrusage(RUSAGE_CHILDREN)``).  From the per-p certificate costs of the largest run
 (``certificate_costs.json`` joined with the claims ``p = N: ...`` of ``certificates.json``) it
 fits the growth exponent k of the cost of one p (cost ~ p^k over the upper half of p) for each
-per-p phase, and extrapolates the phase to pmax 101 and 201 (sum of c p^k), which is what bounds
-the targets this machine cannot reach today.
+per-p phase, and extrapolates the phase to pmax 101 and 201 (sum of c p^k).
 
-Run: ``python bench/bench_build.py [--pmax 15 51]`` (about 6 minutes for 15 and 51); writes
-``bench/results/build.md`` and ``.json``.
+Run: ``python bench/bench_build.py [--pmax 15 51 101] [--baseline REV]`` (about 10 minutes with
+the defaults on the 2-core machine, plus the baseline's builds); writes ``bench/results/build.md``
+and ``.json``.
 """
 from __future__ import annotations
 
 import argparse
 import json
 import math
+import os
 import platform
 import re
 import resource
@@ -37,13 +41,20 @@ LINE = re.compile(r"\[\d+/\d+\] (\w+): (\d+) certificates, ([0-9.]+) s")
 PER_P = re.compile(r"^p = (\d+):")
 
 
-def build(pmax: int, jobs: int | None, out: Path) -> dict:
-    command = [sys.executable, str(ROOT / "build_formulas.py"), "--pmax", str(pmax), "--out", str(out), "--no-cache"]
+def build(pmax: int, jobs: int | None, out: Path, cache: Path | None = None, root: Path = ROOT) -> dict:
+    """One build in a subprocess: cold with ``--no-cache`` (cache None) or with the cache in ``cache``;
+    ``root`` another checkout (the baseline), run with its own packages first on the path."""
+    command = [sys.executable, str(root / "build_formulas.py"), "--pmax", str(pmax), "--out", str(out)]
+    command += ["--no-cache"] if cache is None else []
     if jobs is not None:
         command += ["--jobs", str(jobs)]
+    env = dict(os.environ, PYTHONPATH=str(root))
+    if cache is not None:
+        env["SUSLOV_CACHE_DIR"] = str(cache)
+        env.pop("SUSLOV_NO_CACHE", None)
     before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
     start = time.perf_counter()
-    proc = subprocess.run(command, capture_output=True, text=True, cwd=ROOT)
+    proc = subprocess.run(command, capture_output=True, text=True, cwd=root, env=env)
     wall = time.perf_counter() - start
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} failed:\n{proc.stderr[-2000:]}")
@@ -107,16 +118,29 @@ def growth(costs: dict) -> dict:
 def report(data: dict) -> str:
     names = sorted({n for r in data["runs"] for n in r["derivations"]},
                    key=lambda n: -max(r["derivations"].get(n, 0) for r in data["runs"]))
-    head = "| pmax | jobs | wall (s) | peak RSS (MiB) | " + " | ".join(names) + " |"
+    head = "| pmax | jobs | wall (s) | warm rebuild (s) | peak RSS (MiB) | " + " | ".join(names) + " |"
     lines = ["# What the build costs as pmax grows", "",
              f"Machine: {data['machine']}, Python {data['python']}, 2 cores (shared). Command: "
              "`python bench/bench_build.py`. Seconds per derivation as the build reports them (the round trip of "
              "the emitted module and rendering make up the rest of the wall time). Cold builds (`--no-cache`); a "
-             "rebuild with nothing changed comes from the certificate cache in under a second.", "", head, "|" + " --- |" * (4 + len(names))]
+             "rebuild with nothing changed (same command again, cache filled by the all-cores run) is the warm "
+             "column.", "",
+             head, "|" + " --- |" * (5 + len(names))]
     for r in data["runs"]:
         cells = [f"{r['derivations'].get(n, 0):.1f}" for n in names]
-        lines.append(f"| {r['pmax']} | {r['jobs']} | {r['wall_seconds']:.1f} | {r['peak_rss_mib']:.0f} | "
+        warm = data.get("warm", {}).get(r["pmax"]) if r["jobs"] != 1 else None
+        warm = f"{warm:.1f}" if warm is not None else ""
+        lines.append(f"| {r['pmax']} | {r['jobs']} | {r['wall_seconds']:.1f} | {warm} | {r['peak_rss_mib']:.0f} | "
                      + " | ".join(cells) + " |")
+    if data.get("baseline"):
+        base = data["baseline"]
+        ours = {r["pmax"]: r["wall_seconds"] for r in data["runs"] if r["jobs"] != 1}
+        lines += ["", f"## Against the baseline revision {base['revision']} (same run, all cores, cold)", "",
+                  "| pmax | baseline wall (s) | this revision (s) | ratio |", "| ---: | ---: | ---: | ---: |"]
+        for r in base["runs"]:
+            mine = ours.get(r["pmax"])
+            ratio = f"{r['wall_seconds'] / mine:.1f}x" if mine else ""
+            lines.append(f"| {r['pmax']} | {r['wall_seconds']:.1f} | {f'{mine:.1f}' if mine else ''} | {ratio} |")
     lines += ["", f"## Growth of the per-p certificates (from the pmax {data['largest_pmax']} run)", "",
               "| derivation | exponent k (cost of one p ~ p^k; odd / even p) | largest p | its seconds | "
               "whole phase at pmax 101, one core (s) | at pmax 201 (s) |", "| --- | ---: | ---: | ---: | ---: | ---: |"]
@@ -129,20 +153,44 @@ def report(data: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def run_baseline(revision: str, pmaxes: list, tmp: Path) -> list:
+    """Cold all-cores builds of ``revision`` (a git worktree in ``tmp``) in the same run as the others."""
+    tree = tmp / "baseline"
+    subprocess.run(["git", "worktree", "add", "--detach", "-q", str(tree), revision], cwd=ROOT, check=True)
+    try:
+        runs = []
+        for pmax in pmaxes:
+            runs.append(build(pmax, None, tmp / f"baseline-p{pmax}", root=tree))
+            print(f"baseline {revision}, pmax {pmax}, all cores: {runs[-1]['wall_seconds']:.1f} s", file=sys.stderr)
+        return runs
+    finally:
+        subprocess.run(["git", "worktree", "remove", "--force", str(tree)], cwd=ROOT, check=False)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--pmax", type=int, nargs="+", default=[15, 51])
+    ap.add_argument("--pmax", type=int, nargs="+", default=[15, 51, 101])
+    ap.add_argument("--baseline", metavar="REV", help="also build this git revision (the old way) on all cores, "
+                    "in the same run, for --baseline-pmax")
+    ap.add_argument("--baseline-pmax", type=int, nargs="+", default=[15, 51])
     args = ap.parse_args(argv)
-    runs = []
+    runs, warm = [], {}
     with tempfile.TemporaryDirectory() as tmp:
         for pmax in args.pmax:
-            for jobs in (1, None):
-                out = Path(tmp) / f"p{pmax}-{jobs}"
-                runs.append(build(pmax, jobs, out))
-                print(f"pmax {pmax}, jobs {jobs or 'all'}: {runs[-1]['wall_seconds']:.1f} s", file=sys.stderr)
+            out = Path(tmp) / f"p{pmax}-1"
+            runs.append(build(pmax, 1, out))                        # the old way: one process, cold
+            print(f"pmax {pmax}, one process: {runs[-1]['wall_seconds']:.1f} s", file=sys.stderr)
+            cache = Path(tmp) / f"cache{pmax}"                       # empty: this run is cold too
+            runs.append(build(pmax, None, Path(tmp) / f"p{pmax}-all", cache))
+            print(f"pmax {pmax}, all cores: {runs[-1]['wall_seconds']:.1f} s", file=sys.stderr)
+            warm[pmax] = build(pmax, None, Path(tmp) / f"p{pmax}-warm", cache)["wall_seconds"]
+            print(f"pmax {pmax}, warm rebuild: {warm[pmax]:.1f} s", file=sys.stderr)
         largest = max(args.pmax)
         costs = per_p_costs(Path(tmp) / f"p{largest}-1")
-    data = {"machine": cpu_name(), "python": platform.python_version(), "runs": runs, "largest_pmax": largest,
+        baseline = run_baseline(args.baseline, args.baseline_pmax, Path(tmp)) if args.baseline else []
+    data = {"machine": cpu_name(), "python": platform.python_version(), "runs": runs, "warm": warm,
+            "baseline": {"revision": args.baseline, "runs": baseline} if args.baseline else None,
+            "largest_pmax": largest,
             "growth": growth(costs), "per_p_costs": {k: {str(p): s for p, s in v.items()} for k, v in costs.items()}}
     write_results("build", data, report(data))
     print(report(data))

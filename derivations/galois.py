@@ -45,7 +45,7 @@ from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
 from .errata import erratum
 from .exact import Domain, Extension, certify_zero
-from .local_obstruction import log_obstruction
+from .local_obstruction import log_obstruction, taylor_shift
 from .result import DerivationResult
 from .symbols import g1, g2, g3, p, w1, w2
 from .typeset import latex
@@ -109,16 +109,8 @@ def printed_PQ():
 
 def _shifted(poly: sp.Poly, point) -> list:
     """Coefficients (low to high) of poly(point + zeta), by repeated synthetic division."""
-    coeffs = list(poly.rep.to_list()) if hasattr(poly.rep, "to_list") else list(poly.all_coeffs())
-    out = []
-    while coeffs:
-        acc, quotient = poly.domain.zero, []
-        for c in coeffs:
-            acc = acc * point + c
-            quotient.append(acc)
-        out.append(quotient.pop())
-        coeffs = quotient
-    return out
+    high_to_low = list(poly.rep.to_list()) if hasattr(poly.rep, "to_list") else list(poly.all_coeffs())
+    return taylor_shift(high_to_low[::-1], point, poly.domain.zero)
 
 
 def _taylor(num: sp.Poly, den: sp.Poly, point, order: int) -> list:

@@ -39,11 +39,14 @@ ZERO = flint.fmpq_poly([])
 ONE = flint.fmpq_poly([1])
 
 
-def taylor_shift(coeffs: list, point) -> list:
-    """Coefficients (low to high, in zeta) of ``sum c_k w^k`` at ``w = point + zeta`` (synthetic division)."""
+def taylor_shift(coeffs: list, point, zero=ZERO) -> list:
+    """Coefficients (low to high, in zeta) of ``sum c_k w^k`` at ``w = point + zeta`` (synthetic division).
+
+    Any ring: ``zero`` is its zero (python-flint ``fmpq_poly`` by default, a SymPy domain's elsewhere).
+    """
     coeffs, out = list(coeffs[::-1]), []
     while coeffs:
-        acc, quotient = ZERO, []
+        acc, quotient = zero, []
         for c in coeffs:
             acc = acc * point + c
             quotient.append(acc)
