@@ -140,7 +140,7 @@ class CertificateLog:
             certificate.key = certificate.derivation = ""
         return self.certificates
 
-    def map_per_p(self, label: str, values, work, cacheable: bool = True) -> list:
+    def map_per_p(self, label: str, values, work, cacheable: bool = True, meanwhile=None) -> list:
         """``[work(p) for p in values]``, independent per-p computations run in parallel.
 
         ``work`` is a top-level function (it is sent to worker processes or a Dask cluster) that
@@ -149,7 +149,10 @@ class CertificateLog:
         certificate log and every output are identical whatever executed the work (one process,
         local processes, Dask).  Phases shorter than ``PARALLEL_MIN`` values stay in this process.
         ``cacheable=False`` for work whose result depends on more than its module and the value (the
-        round trip's checks of an emitted module, say): never taken from the cache.
+        round trip's checks of an emitted module, say): never taken from the cache.  ``meanwhile()``
+        runs once in this process while the workers compute (:func:`suslov.executor.run_chunks`): the
+        caller's serial work overlaps the parallel phase, and records its certificates before the
+        phase's, exactly as when it ran first.
         """
         from suslov.executor import run_chunks  # the simulator's executor: one mechanism for both
 
@@ -174,7 +177,7 @@ class CertificateLog:
         n = len(values)
         backwards, computed = run_chunks(work, values[::-1], keys[::-1], store=store, workers=workers,
                                          scheduler=self.scheduler if n >= PARALLEL_MIN else None,
-                                         on_finish=lambda i: finished(n - 1 - i))
+                                         on_finish=lambda i: finished(n - 1 - i), meanwhile=meanwhile)
         results = backwards[::-1]
         if store is not None:
             self.cache_report.append({"phase": label, "values": len(values), "from_cache": len(values) - computed,

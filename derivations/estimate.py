@@ -2,9 +2,10 @@
 
 From ``bench/results/build.json`` (written by ``bench/bench_build.py`` on the 2-core machine): for
 each per-p phase the fitted cost of one p, ``c p^k`` (residue's Frobenius logarithms at t0
-(Theorem 3.5), the meromorphic bases (Theorem 6.1), the logarithms at s1..s4 of section 5.2,
-the first integrals), summed over the p the build will certify and divided by the workers; plus
-the rest of the build as measured at the largest benchmarked pmax.  An estimate from a power law,
+(Theorem 3.5), the meromorphic bases (Theorem 6.1), the logarithms at s1..s4 of section 5.2, the
+first integrals, the round trip of the emitted module), summed over the p the build will certify
+and, for the phases that run on the workers, divided by their number; plus the rest of the build
+as measured at the largest benchmarked pmax.  An estimate from a power law,
 not a promise: the build says so, and proceeds.
 """
 from __future__ import annotations
@@ -16,7 +17,7 @@ from pathlib import Path
 from .galois import GALOIS_PMAX   # galois decides the conjecture for p <= max(pmax, GALOIS_PMAX)
 
 BENCH = Path(__file__).resolve().parent.parent / "bench" / "results" / "build.json"
-PARALLEL = ("galois", "meromorphic", "residue")   # the phases that run through CertificateLog.map_per_p
+PARALLEL = ("galois", "meromorphic", "residue", "roundtrip")   # the phases run through CertificateLog.map_per_p
 
 
 def estimate_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH) -> float | None:

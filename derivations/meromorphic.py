@@ -335,21 +335,25 @@ def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
 
     result = DerivationResult(NAME)
     rows = []
-    compare_poly_f2(log, result, options)
-    conservation_certificate(log)
     bases, objects = {}, {}
-    # p <= KEEP_BASES here (their Basis objects feed the printed comparisons), the rest in parallel
-    # (CertificateLog.map_per_p); both recorded in p order, so the log is the same either way
     odd = options.odd_p_values()
-    for p in log.per_p("bases", [q for q in odd if q <= KEEP_BASES]):
-        c_f1 = genhip_check(log, p)
-        basis = bases[p] = certify_p(log, p)
-        objects[p] = (basis.real.M, basis.complex_.M)
-        rows.append({"p": p, "sigma": basis.sigma, "certificates": [c_f1.key] + [c.key for c in basis.certificates],
-                     "terms": [len(m) for m in basis.real.M + basis.complex_.M]})
+
+    def kept_bases():
+        # p <= KEEP_BASES in this process (their Basis objects feed the printed comparisons), while the
+        # workers certify the rest; recorded before them, in p order, so the log is the same either way
+        compare_poly_f2(log, result, options)
+        conservation_certificate(log)
+        for p in log.per_p("bases", [q for q in odd if q <= KEEP_BASES]):
+            c_f1 = genhip_check(log, p)
+            basis = bases[p] = certify_p(log, p)
+            objects[p] = (basis.real.M, basis.complex_.M)
+            rows.append({"p": p, "sigma": basis.sigma,
+                         "certificates": [c_f1.key] + [c.key for c in basis.certificates],
+                         "terms": [len(m) for m in basis.real.M + basis.complex_.M]})
+
     later = [q for q in odd if q > KEEP_BASES]
     digests = {}
-    for p, outcome in zip(later, log.map_per_p("bases", later, basis_for_p)):
+    for p, outcome in zip(later, log.map_per_p("bases", later, basis_for_p, meanwhile=kept_bases)):
         keys = [log.record(c).key for c in outcome["certificates"]]   # raises at a failed one, as in serial
         digests[p] = outcome["digest"]
         rows.append({"p": p, "sigma": outcome["sigma"], "certificates": keys, "terms": outcome["terms"]})

@@ -246,7 +246,8 @@ def certify_module(log: CertificateLog, build, directory: Path) -> list:
 
     In this process: the emitted formulas, the exact cores against the objects kept here, and the
     float paths of those p; the p whose bases were certified in workers get :func:`per_p_checks`
-    through ``CertificateLog.map_per_p`` (all cores, largest p first, recorded in p order).
+    through ``CertificateLog.map_per_p`` (all cores, largest p first, recorded in p order), which
+    runs while this process does its own part.
     """
     from . import float_paths
     from .pipeline import emitted_formulas
@@ -255,13 +256,19 @@ def certify_module(log: CertificateLog, build, directory: Path) -> list:
     exports = build.results["meromorphic"].exports
     digests = exports.get("digests", {})
     # the same working precision whatever the caller set: the evidence details are part of the byte-identical outputs
+    certs = []
+
+    def in_this_process():
+        # while the workers check the later p; recorded first, as when it ran before them
+        certs.extend(certify_emitted(log, module, emitted_formulas(build)))
+        certs.extend(certify_integral_core(log, module, build.results["first_integrals"].exports["objects"]))
+        certs.extend(certify_basis_core(log, module, exports["objects"]))
+        certs.extend(float_paths.certify(log, module, build, skip=set(digests)))
+
     with log.section(SECTION), mpmath.workdps(15):
-        certs = certify_emitted(log, module, emitted_formulas(build))
-        certs += certify_integral_core(log, module, build.results["first_integrals"].exports["objects"])
-        certs += certify_basis_core(log, module, exports["objects"])
-        certs += float_paths.certify(log, module, build, skip=set(digests))
         tasks = [(str(directory), p, digest) for p, digest in sorted(digests.items())]
-        for batch in log.map_per_p("round trip: bases beyond the kept ones", tasks, per_p_checks, cacheable=False):
+        for batch in log.map_per_p("round trip: bases beyond the kept ones", tasks, per_p_checks, cacheable=False,
+                                   meanwhile=in_this_process):
             certs += [log.record(c) for c in batch]
     return certs
 

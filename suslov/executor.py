@@ -109,12 +109,15 @@ class _Progress:
 def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkStore | None = None,
                scheduler: str | None = None, workers: int | None = None,
                progress: Callable[[str], None] | None = None,
-               on_finish: Callable[[int], None] | None = None) -> tuple[list, int]:
+               on_finish: Callable[[int], None] | None = None,
+               meanwhile: Callable[[], None] | None = None) -> tuple[list, int]:
     """``[work(c) for c in chunks]`` in chunk order, computing only what ``store`` lacks.
 
     Returns (results, number of chunks computed now).  ``scheduler`` is a dask.distributed
     address (``tcp://host:port``); otherwise ``workers`` local processes (default: all cores;
     1 runs in this process).  ``on_finish(i)`` is called as chunk i completes (any order).
+    ``meanwhile()``, if given, runs exactly once in this process while the workers compute (before
+    the chunks when there are no workers), so this process's own work does not leave them idle.
     Used by sweeps (:mod:`suslov.sweep`) and by the build's per-p certificates
     (``derivations.certificates.CertificateLog.map_per_p``).
     """
@@ -138,17 +141,20 @@ def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkSto
         if on_finish is not None:
             on_finish(i)
 
+    meanwhile = meanwhile or (lambda: None)
     if not pending:
+        meanwhile()
         return results, 0
     if scheduler:
-        _run_dask(work, chunks, keys, pending, scheduler, finish)
+        _run_dask(work, chunks, keys, pending, scheduler, finish, meanwhile)
     else:
         workers = default_workers() if workers is None else workers
         if workers <= 1 or len(pending) == 1:
+            meanwhile()
             for i in pending:
                 finish(i, work(chunks[i]))
         else:
-            _run_local(work, chunks, pending, workers, finish)
+            _run_local(work, chunks, pending, workers, finish, meanwhile)
     return results, len(pending)
 
 
@@ -175,10 +181,11 @@ def shutdown_pools() -> None:
         _POOLS.popitem()[1].shutdown(wait=True, cancel_futures=True)
 
 
-def _run_local(work, chunks, pending, workers, finish):
+def _run_local(work, chunks, pending, workers, finish, meanwhile):
     pool = _local_pool(workers)
     try:
         futures = {pool.submit(work, chunks[i]): i for i in pending}
+        meanwhile()
         remaining = set(futures)
         while remaining:
             done, remaining = wait(remaining, return_when=FIRST_COMPLETED)
@@ -261,12 +268,13 @@ def _discard_half_built_clients(error: BaseException, client_type) -> None:
         tb = tb.tb_next
 
 
-def _run_dask(work, chunks, keys, pending, address, finish):
+def _run_dask(work, chunks, keys, pending, address, finish, meanwhile):
     from distributed import as_completed
 
     client = connect(address)
     try:
         futures = [client.submit(work, chunks[i], key=f"suslov-{keys[i]}", pure=False) for i in pending]
+        meanwhile()
         index = {f.key: i for f, i in zip(futures, pending)}
         for future in as_completed(futures, loop=client.loop):
             finish(index[future.key], future.result())

@@ -6,12 +6,12 @@ from derivations.estimate import BENCH, estimate_seconds
 
 def test_estimate_from_a_synthetic_benchmark(tmp_path):
     """Per-p costs c p^k: galois 0.001 p^2 (every p, at least up to 40), residue 0.01 p (every p),
-    roundtrip 0.5 (serial); 100 s measured at pmax 20 with one job, so 'the rest' is 100 minus the
-    phases at pmax 20."""
+    first_integrals 0.5 (serial: it runs in the main process); 100 s measured at pmax 20 with one
+    job, so 'the rest' is 100 minus the phases at pmax 20."""
     def law(c, k):
         return {"classes": [{"coefficient": c, "exponent": k, "first": 1, "step": 1}]}
 
-    growth = {"galois": law(0.001, 2.0), "residue": law(0.01, 1.0), "roundtrip": law(0.5, 0.0)}
+    growth = {"galois": law(0.001, 2.0), "residue": law(0.01, 1.0), "first_integrals": law(0.5, 0.0)}
     bench = tmp_path / "build.json"
     bench.write_text(json.dumps({"growth": growth, "largest_pmax": 20,
                                  "runs": [{"pmax": 20, "jobs": 1, "wall_seconds": 100.0}]}))
