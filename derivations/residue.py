@@ -121,7 +121,7 @@ def _matvec(M, v):
         for j, entry in row:
             term = entry * v[j]
             total = term if total is None else total + term
-        out.append(total if total is not None else v[0] - v[0])
+        out.append(total if total is not None else LaurentQD.constant(0))
     return out
 
 

@@ -30,6 +30,7 @@ the function, p and what differs; :func:`verify` returns the first discrepancy i
 """
 from __future__ import annotations
 
+import hashlib
 import importlib.util
 import itertools
 import sys
@@ -164,6 +165,10 @@ def certify_integral_core(log: CertificateLog, module, objects: dict) -> list:
     return out
 
 
+def _core_claim(p: int) -> str:
+    return f"p = {p}: gamma_basis's exact core reproduces the certified numerators of gamma^(1) and V"
+
+
 def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
     """The emitted ``_basis_core`` against the certified numerators kept in this process: exact equality."""
     out = []
@@ -173,9 +178,8 @@ def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
             differing = [f"{kind} component {j + 1}" for kind, got, want in (("gamma^(1)", mine[0], real),
                                                                            ("V", mine[1], cplx))
                          for j in range(3) if got.M[j] != want[j]]
-        out.append(_record(log, f"p = {p}: gamma_basis's exact core reproduces the certified numerators of gamma^(1) "
-                           "and V", "round trip", "exact equality in Q[x,d,i]/(i^2+1) (python-flint)", not differing,
-                           elapsed[0], sum(len(m) for m in real + cplx),
+        out.append(_record(log, _core_claim(p), "round trip", "exact equality in Q[x,d,i]/(i^2+1) (python-flint)",
+                           not differing, elapsed[0], sum(len(m) for m in real + cplx),
                            "differs: " + ", ".join(differing) if differing else "identical"))
     return out
 
@@ -188,10 +192,9 @@ def basis_core_by_digest(module, p: int, digest: str) -> Certificate:
     with stopwatch() as elapsed:
         real, cplx = module._basis_core(p, BASIS_RING)
         same = numerators_digest(real.M, cplx.M) == digest
-    return Certificate(f"p = {p}: gamma_basis's exact core reproduces the certified numerators of gamma^(1) and V",
-                       "round trip", "equal SHA-256 of python-flint's printed numerators (the certifying worker's "
-                       "and the emitted core's)", Outcome.PASS if same else Outcome.FAIL, elapsed[0],
-                       sum(len(m) for m in real.M + cplx.M), "identical" if same else "differs")
+    return Certificate(_core_claim(p), "round trip", "equal SHA-256 of python-flint's printed numerators (the "
+                       "certifying worker's and the emitted core's)", Outcome.PASS if same else Outcome.FAIL,
+                       elapsed[0], sum(len(m) for m in real.M + cplx.M), "identical" if same else "differs")
 
 
 def per_p_checks(task) -> list:
@@ -206,7 +209,7 @@ def per_p_checks(task) -> list:
     directory, p, digest = task
     module = load_module_once(directory)
     private = CertificateLog(derivation=SECTION)
-    certs = [basis_core_by_digest(module, p, digest)]
+    core = basis_core_by_digest(module, p, digest)   # not recorded: no key, no derivation yet
     try:
         with mpmath.workdps(15):
             if p in module.INTEGRAL_PS:
@@ -214,9 +217,7 @@ def per_p_checks(task) -> list:
             float_paths.check_gamma_basis(private, module, p)
     except CertificationFailure:
         pass   # returned with the others: the main log raises when it records it, as in one process
-    for cert in certs:
-        cert.derivation = cert.key = ""
-    return certs + private.handed_over()
+    return [core] + private.handed_over()
 
 
 _modules: dict = {}
@@ -228,8 +229,6 @@ def load_module_once(directory) -> object:
     Keyed by the file's SHA-256, not only its directory: workers outlive a build (the executor keeps
     its pool), and the next build may stage a different module in the same place.
     """
-    import hashlib
-
     path = Path(directory) / "suslov_formulas.py"
     key = (str(directory), hashlib.sha256(path.read_bytes()).hexdigest())
     if key not in _modules:
