@@ -184,17 +184,19 @@ def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
     return out
 
 
-def basis_core_by_digest(module, p: int, digest: str) -> Certificate:
+def basis_core_by_digest(module, p: int, digest: str) -> tuple:
     """The emitted core's numerators for p against :func:`derivations.meromorphic.numerators_digest` of
-    the basis certified in another process; returned, not recorded (the caller records it in p order)."""
+    the basis certified in another process: (certificate, numerators), the certificate returned, not
+    recorded (the caller records it in p order), the numerators as (real, complex) lists."""
     from .meromorphic import numerators_digest
 
     with stopwatch() as elapsed:
         real, cplx = module._basis_core(p, BASIS_RING)
         same = numerators_digest(real.M, cplx.M) == digest
-    return Certificate(_core_claim(p), "round trip", "equal SHA-256 of python-flint's printed numerators (the "
-                       "certifying worker's and the emitted core's)", Outcome.PASS if same else Outcome.FAIL,
-                       elapsed[0], sum(len(m) for m in real.M + cplx.M), "identical" if same else "differs")
+    method = "equal SHA-256 of python-flint's printed numerators (the certifying worker's and the emitted core's)"
+    certificate = Certificate(_core_claim(p), "round trip", method, Outcome.PASS if same else Outcome.FAIL, elapsed[0],
+                              sum(len(m) for m in real.M + cplx.M), "identical" if same else "differs")
+    return certificate, (real.M, cplx.M)
 
 
 def per_p_checks(task) -> list:
@@ -209,12 +211,13 @@ def per_p_checks(task) -> list:
     directory, p, digest = task
     module = load_module_once(directory)
     private = CertificateLog(derivation=SECTION)
-    core = basis_core_by_digest(module, p, digest)   # not recorded: no key, no derivation yet
+    core, numerators = basis_core_by_digest(module, p, digest)   # not recorded: no key, no derivation yet
     try:
         with mpmath.workdps(15):
             if p in module.INTEGRAL_PS:
                 float_paths.check_first_integral(private, module, p)
-            float_paths.check_gamma_basis(private, module, p)
+            # the exact evaluation only from numerators proved equal to the certified ones
+            float_paths.check_gamma_basis(private, module, p, numerators if core.outcome is Outcome.PASS else None)
     except CertificationFailure:
         pass   # returned with the others: the main log raises when it records it, as in one process
     return [core] + private.handed_over()

@@ -47,7 +47,7 @@ from suslov.kernel.frames import canonical_frame, rotation_about_e3
 from suslov.kernel.validate import mp_real, odd_p, rational, real_array, real_scalar
 from suslov.recipes import basis as _basis_recipe
 from suslov.recipes import integrals as _integral_recipe
-from suslov.recipes.rings import AcbBasisRing, BasisRing, IntegralRing, homogeneous_coefficients
+from suslov.recipes.rings import AcbBasisRing, IntegralRing, homogeneous_coefficients
 
 __all__ = ["PMAX", "INTEGRAL_PS", "BASIS_PS", "omega", "omega_mp", "omega_general", "omega_general_mp",
            "first_integral", "first_integral_mp", "first_integral_coefficients", "gamma_basis", "gamma_basis_mp",
@@ -292,12 +292,22 @@ def first_integral_coefficients(p: int, d) -> dict:
 _FLOAT_COEFFICIENTS: dict = {}
 
 
-def _float_coefficients(p: int, d: float) -> list:
-    """(3, p+1) coefficients of P1, P2, P3 correctly rounded to float64 (exact from the float d; cached)."""
+def _float_coefficients(p: int, d: float) -> tuple[np.ndarray, int]:
+    """(3, p+1) coefficients of P1, P2, P3 over 2^E, correctly rounded to float64, and E (cached per (p, d)).
+
+    Exact from the float d; E is the binary exponent of the largest, so every scaled coefficient
+    is at most 1 in modulus and none overflows (they reach 1e340 at p = 201, d = 50) or falls
+    below the normal range unless it is 2^-1000 times smaller than the largest.
+    """
     key = (p, d)
     if key not in _FLOAT_COEFFICIENTS:
         exact = _exact_coefficients(p, Fraction(d))
-        _FLOAT_COEFFICIENTS[key] = np.array([[float(v) for v in exact[name]] for name in ("P1", "P2", "P3")])
+        rows = [exact[name] for name in ("P1", "P2", "P3")]
+        top = max((abs(v) for row in rows for v in row), default=Fraction(1)) or Fraction(1)
+        E = top.numerator.bit_length() - top.denominator.bit_length() + 1   # top / 2^E in (1/4, 2)
+        E += 1 if top >= Fraction(2) ** E else 0
+        two_E = Fraction(2) ** E
+        _FLOAT_COEFFICIENTS[key] = (np.array([[float(v / two_E) for v in row] for row in rows]), E)
     return _FLOAT_COEFFICIENTS[key]
 
 
@@ -315,10 +325,13 @@ def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, g
     ``d`` and the five state arguments broadcast; returns float64.  The coefficients are
     computed exactly from the float d and rounded once (cached per (p, d)); evaluated as
     ``s^p sum_i P_i(omega/s) gamma_i`` with ``s = max(|omega1|, |omega2|)`` and Horner's rule in
-    the ratio of modulus <= 1 (``suslov.kernel.horner.combination``).  Error bound (evidence against :func:`first_integral_mp`):
-    absolute ``2e-15 (p+1) s^p sum_i |gamma_i| sum_k |a_ik|``.  Raises ValueError for even,
-    non-integer or uncertified p, d <= 0, non-finite input, and when s^p overflows float64
-    (use :func:`first_integral_mp` then).
+    the ratio of modulus <= 1 (``suslov.kernel.horner.combination``), the powers of two of s^p
+    and of the coefficients' scale applied once at the end (no intermediate over- or
+    underflow).  Error bound (evidence against :func:`first_integral_mp`): absolute
+    ``2e-15 (p+1) s^p sum_i |gamma_i| sum_k |a_ik| + 5e-324`` (the last term: a result in
+    float64's subnormal range).  Raises ValueError for even, non-integer or uncertified p,
+    d <= 0, non-finite input, and when the value overflows float64 (use
+    :func:`first_integral_mp` then).
 
     >>> w1, w2 = omega(0.3, 3, 0.5)
     >>> round(float(first_integral(3, 0.5, w1, w2, 1.0, 0.0, 0.0)), 6)   # P1 = w1 (F1 + c1 w2^2), F1 = 45
@@ -332,19 +345,23 @@ def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, g
     d, w1, w2 = d.ravel(), w1.ravel(), w2.ravel()
     g = np.stack([g1.ravel(), g2.ravel(), g3.ravel()])
     s = np.maximum(np.abs(w1), np.abs(w2))
-    with np.errstate(over="raise"):
-        try:
-            scale = s**p
-        except FloatingPointError:
-            raise ValueError(f"max(|omega1|, |omega2|)^p overflows float64 for p={p}: use first_integral_mp") from None
-    if d.size == 0 or np.all(d == d[0]):
-        value = horner.combination(_float_coefficients(p, float(d[0])) if d.size else np.zeros((3, p + 1)), w1, w2, g)
-    else:
-        value = np.empty(d.shape)
-        for dv in np.unique(d):
-            mask = d == dv
-            value[mask] = horner.combination(_float_coefficients(p, float(dv)), w1[mask], w2[mask], g[:, mask])
-    return (value * scale).reshape(shape)
+    # s^p as m^p 2^(p e), m in [1/2, 1): m^p >= 2^-p is a normal float for every certified p, so
+    # neither s^p nor the coefficients' scale 2^E over- or underflows before the one final ldexp
+    mantissa, exponent = np.frexp(s)
+    value = np.empty(d.shape)
+    single = d.size and np.all(d == d[0])
+    for dv in ((d[0],) if single else np.unique(d)):
+        mask = slice(None) if single else d == dv
+        coefficients, E = _float_coefficients(p, float(dv))
+        value[mask] = horner.combination(coefficients, w1[mask], w2[mask], g[:, mask]) * mantissa[mask] ** p
+        exponents = p * exponent[mask].astype(np.int64) + E
+        with np.errstate(over="ignore"):
+            value[mask] = np.ldexp(value[mask], np.clip(exponents, -4000, 4000))
+    if not np.all(np.isfinite(value)):
+        where = int(np.flatnonzero(~np.isfinite(value))[0])
+        raise ValueError(f"first_integral overflows float64 at p={p}, d={float(d[where])!r}, omega=({float(w1[where])!r}, "
+                         f"{float(w2[where])!r}): |F3| beyond 1.8e308; use first_integral_mp") from None
+    return value.reshape(shape)
 
 
 def first_integral_mp(p: int, d, omega1, omega2, gamma1, gamma2, gamma3, dps: int = 50):
@@ -377,29 +394,62 @@ def _basis_p(p) -> int:
     return odd_p(p, BASIS_PS, "closed-form meromorphic solutions exist for odd p only")
 
 
+def _arb_of(value) -> "flint.arb":
+    """A ball containing a binary float or mpf exactly (at the current precision, which holds its mantissa)."""
+    man, exp = mpmath.mpf(value).man_exp
+    return flint.arb(int(man)) * flint.arb(2) ** int(exp)
+
+
+def _series_balls(p: int, d, radius: float, bits: int):
+    """Ball coefficients of the basis rows' trigonometric series, every radius <= ``radius``.
+
+    The recipe and the Fourier products run in python-flint ball arithmetic from the exact
+    binary d; the precision (``bits`` to start, the alternating sums lose about 3p digits)
+    is doubled until every ball is that narrow, so each midpoint is within ``radius`` of
+    the exact coefficient: a rigorous bound, with no second run at a higher precision.
+    Returns (alpha, beta) as ``acb_mat``, rows gamma^(1)_1..3 then G_1..3 (V scaled), columns k = 0..p.
+    """
+    saved = flint.ctx.prec
+    try:
+        while True:
+            flint.ctx.prec = bits
+            ring = AcbBasisRing(_arb_of(d))
+            c = (ring.d**2 + 1).sqrt()
+            real, cplx = _basis_core(p, ring)
+            real_lists = [m.coeffs() for m in real.M]
+            complex_lists = [m.coeffs() for m in cplx.M]
+            s, k = -real_lists[0][0], complex_lists[1][0]  # certified: gamma1 -> -1 and V2 -> 1 at x = 0
+            rows = [[v / (f * s) for v in comp] for comp, f in zip(real_lists, (1, c, c))]
+            rows += [[f * v / k for v in comp] for comp, f in zip(complex_lists, (c, 1, 1))]
+            alpha, beta = fourier.to_fourier_acb(rows, p)
+            if all(float(v.real.rad()) <= radius and float(v.imag.rad()) <= radius for m in (alpha, beta) for v in m.entries()):
+                return alpha, beta
+            bits *= 2
+    finally:
+        flint.ctx.prec = saved
+
+
+def _series_midpoints(p: int, d, radius: float, bits: int, convert) -> list:
+    """``convert``-ed ball midpoints, nested [row][component][re/im][cos/sin][k] (row 0: gamma^(1), 1: G)."""
+    alpha, beta = _series_balls(p, d, radius, bits)
+    return [[[[[convert(getattr(matrix[3 * row + comp, k], part).mid()) for k in range(p + 1)]
+               for matrix in (alpha, beta)] for part in ("real", "imag")] for comp in range(3)] for row in range(2)]
+
+
+def _mpf_of(ball_mid) -> mpmath.mpf:
+    man, exp = ball_mid.man_exp()
+    return mpmath.mpf((int(man), int(exp)))   # exact: a binary midpoint is an mpf
+
+
 _SERIES: dict = {}
 
 
-def _basis_series(p: int, d, dps: int):
-    """Trigonometric-polynomial coefficients of the basis rows, (rows, components, re/im, cos/sin, k)."""
+def _basis_series(p: int, d, dps: int) -> list:
+    """mpf coefficients within 10^-(dps+10) of the exact ones (:func:`_series_balls`), cached per (p, d, dps)."""
     key = (p, mpmath.mpf(d), dps)
-    if key in _SERIES:
-        return _SERIES[key]
-    with mpmath.workdps(dps):
-        ring = BasisRing(d)
-        c = mpmath.sqrt(ring.d**2 + 1)
-        real, cplx = _basis_core(p, ring)
-        real_lists = [m.coefficient_list(0) for m in real.M]
-        s = -real_lists[0][0]  # certified: gamma1 -> -1 at x = 0 after division by the scale
-        rows = [[[fourier.to_fourier([mpmath.re(v) / (f * s) for v in comp], p)]
-                 for comp, f in zip(real_lists, (1, c, c))]]
-        complex_lists = [m.coefficient_list(0) for m in cplx.M]
-        k = complex_lists[1][0]
-        G = [[f * v / k for v in comp] for comp, f in zip(complex_lists, (c, 1, 1))]
-        rows.append([[fourier.to_fourier([mpmath.re(v) for v in comp], p),
-                      fourier.to_fourier([mpmath.im(v) for v in comp], p)] for comp in G])
-    _SERIES[key] = rows
-    return rows
+    if key not in _SERIES:
+        _SERIES[key] = _series_midpoints(p, d, 10.0 ** -(dps + 10), int(3.33 * (dps + 10)) + 12 * p, _mpf_of)
+    return _SERIES[key]
 
 
 _SERIES_FLOAT: dict = {}
@@ -408,46 +458,13 @@ _SERIES_FLOAT: dict = {}
 def _series_float(p: int, d: float) -> np.ndarray:
     """float64 coefficients (shape (2, 3, 2, 2, p+1): row, component, re/im, cos/sin, k), cached per (p, d).
 
-    The recipe and the Fourier products run in python-flint ball arithmetic from the exact
-    float d; the precision (64 + 12p bits to start, the alternating sums lose about 3p
-    digits) is doubled until every ball has radius <= 1e-17, so each float64 coefficient is
-    its ball's midpoint, within 1e-17 + half an ulp of the exact value (a rigorous bound).
+    Each is its ball's midpoint with radius <= 1e-17 (:func:`_series_balls`, from 64 + 12p bits),
+    so within 1e-17 + half an ulp of the exact value (a rigorous bound).
     """
     key = (p, d)
-    if key in _SERIES_FLOAT:
-        return _SERIES_FLOAT[key]
-    import flint
-
-    saved, bits = flint.ctx.prec, 64 + 12 * p
-    try:
-        while True:
-            flint.ctx.prec = bits
-            ring = AcbBasisRing(d)
-            c = (ring.d**2 + 1).sqrt()
-            real, cplx = _basis_core(p, ring)
-            real_lists = [m.coeffs() for m in real.M]
-            complex_lists = [m.coeffs() for m in cplx.M]
-            s, k = -real_lists[0][0], complex_lists[1][0]
-            rows = [[v / (f * s) for v in comp] for comp, f in zip(real_lists, (1, c, c))]
-            rows += [[f * v / k for v in comp] for comp, f in zip(complex_lists, (c, 1, 1))]
-            alpha, beta = fourier.to_fourier_acb(rows, p)
-            out = np.zeros((2, 3, 2, 2, p + 1))
-            worst = 0.0
-            for index in range(6):
-                row, comp = divmod(index, 3)
-                for part, matrix in ((0, alpha), (1, beta)):
-                    for kk in range(p + 1):
-                        value = matrix[index, kk]
-                        out[row, comp, 0, part, kk] = float(value.real.mid())
-                        out[row, comp, 1, part, kk] = float(value.imag.mid())
-                        worst = max(worst, float(value.real.rad()), float(value.imag.rad()))
-            if worst <= 1e-17:
-                break
-            bits *= 2
-    finally:
-        flint.ctx.prec = saved
-    _SERIES_FLOAT[key] = out
-    return out
+    if key not in _SERIES_FLOAT:
+        _SERIES_FLOAT[key] = np.array(_series_midpoints(p, d, 1e-17, 64 + 12 * p, float))
+    return _SERIES_FLOAT[key]
 
 
 def _careful_phase(p: int, d: float, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -509,7 +526,7 @@ def gamma_basis(t: ArrayLike, p: int, d: ArrayLike) -> np.ndarray:
     vector ``C``.  ``p`` is one odd integer (3 and 3.0 both accepted); ``t`` and ``d``
     broadcast.  Evaluated as trigonometric polynomials in th = 2 arctan(e^-t) whose
     coefficients are bounded by 2 (no cancellation for large p, no overflow, no removable
-    singularity at t = 0); coefficients computed once per (p, d) with mpmath and cached.
+    singularity at t = 0); coefficients enclosed once per (p, d) in python-flint balls and cached.
     The phase (p/d) t is reduced in double-double arithmetic below 5.3e7 and with mpmath
     beyond, so no digits are lost for any t.  Error bound (evidence against
     :func:`gamma_basis_mp`): absolute ``1e-15 (p+1)^1.5 + 4e-16 |p t/d| + 2e-16 |t|``.
@@ -532,9 +549,11 @@ def gamma_basis(t: ArrayLike, p: int, d: ArrayLike) -> np.ndarray:
 def gamma_basis_mp(t, p: int, d, dps: int = 50):
     """mpmath twin of :func:`gamma_basis` for scalar ``t`` and ``d``: a 3x3 ``mpmath.matrix`` (rows gamma^(i)).
 
-    Arguments as in :func:`omega_mp` (strings for exact decimals).  The coefficients are
-    computed at ``max(dps, 40) + 3p + 40`` digits (the alternating sums lose up to ~3p
-    digits) and the result is rounded to ``dps`` digits.
+    Arguments as in :func:`omega_mp` (strings for exact decimals).  The series coefficients
+    are ball midpoints within 10^-(max(dps, 40) + 10) of the exact ones for this d (python-flint
+    ball arithmetic, the precision raised until the balls are that narrow, cached per (p, d,
+    dps)); the series and the phase are summed in mpmath at dps + 10 digits and the result is
+    rounded to ``dps`` digits.
 
     >>> M = gamma_basis_mp("0.3", 1, "0.5", dps=30)
     >>> mpmath.nstr(mpmath.det(M), 25), bool(abs(M[0, 0] - math.tanh(0.3)) < 1e-15)   # a rotation; gamma1 = tanh t
@@ -544,7 +563,7 @@ def gamma_basis_mp(t, p: int, d, dps: int = 50):
     with mpmath.workdps(dps):
         t = mp_real("t", t)
         d = mp_real("d", d, positive=True)
-    rows = _basis_series(p, d, max(dps, 40) + 3 * p + 40)
+    rows = _basis_series(p, d, max(dps, 40))
     sigma = _BASIS_SIGMA[p]
     with mpmath.workdps(dps + 10):
         th = 2 * mpmath.atan(mpmath.exp(-t))

@@ -7,6 +7,7 @@ generated module's recipe), the paper's printed p = 1 integral, and mpmath.
 """
 from fractions import Fraction
 
+import mpmath
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -90,6 +91,30 @@ def test_large_omega_scales_homogeneously():
     assert abs(big / base / 1000.0**15 - 1) < 1e-13
     with pytest.raises(ValueError, match="overflows"):
         sf.first_integral(15, 1.5, 1e30, 1.0, 0.1, 0.2, 0.3)
+
+
+def test_coefficients_beyond_float64_are_scaled_not_overflowed():
+    """At d = 1e23 the coefficients of P1 reach (d^2+1)^7 ~ 1e322 (beyond float64; they reach 1e340 at
+    p = 201, d = 50): the float path scales them by a power of two, and agrees with the exact-coefficient
+    mpmath twin; where the value itself exceeds float64 it raises and says so."""
+    args = (15, 1e23, 2e-3, -1e-3, 0.6, 0.0, 0.8)
+    exact = sf.first_integral_mp(*args, dps=40)
+    assert 1e250 < abs(exact) < 1e300
+    assert abs(float(sf.first_integral(*args)) - exact) < 1e-13 * abs(exact)
+    with pytest.raises(ValueError, match=r"overflows float64 at p=15, d=1e\+23"):
+        sf.first_integral(15, 1e23, 2.0, -1.0, 0.6, 0.0, 0.8)
+
+
+def test_subnormal_scale_is_applied_once():
+    """s^p below float64's normal range (s = 5e-21, p = 15: 3e-311): s^p is never formed; the result
+    is one rounding of the value, so its error is within the docstring bound with the 5e-324 floor."""
+    args = (15, 1.5, 3e-21, -5e-21, 0.36, 0.48, 0.8)
+    exact = sf.first_integral_mp(*args, dps=40)
+    coefficients = sf.first_integral_coefficients(15, 1.5)
+    sizes = [sum(abs(a) for a in coefficients[name]) for name in ("P1", "P2", "P3")]
+    bound = 2e-15 * 16 * float(mpmath.mpf(5e-21) ** 15 * sum(g * s for g, s in zip((0.36, 0.48, 0.8), sizes))) + 5e-324
+    assert 0 < abs(exact) < 1e-300
+    assert abs(float(sf.first_integral(*args)) - exact) <= bound
 
 
 @pytest.mark.parametrize("p, needle", [(2, "p=2"), (4, "p=4"), (3.5, "p=3.5"), ("3", "p='3'"), (-1, "p=-1"),

@@ -68,6 +68,25 @@ def test_generated_recipe_equals_certified_numerators(p):
             assert max(abs(exact[r][c] - twin[r, c]) for r in range(3) for c in range(3)) < mpmath.mpf(10) ** -45
 
 
+def test_exact_values_of_the_certified_numerators_match_the_printed_p1_solution():
+    """The round trip's exact route (float_paths.exact_basis_values) at x = e^t = 2/3, d = 3/4, c = 5/4:
+    the paper's p = 1 gamma^(1) = (tanh t, -sech t / c, d sech t / c) with tanh t = -5/13, sech t = 12/13,
+    typed here; and V -> (0, 1, i sigma) as x -> 0 (the numerators' own normalisation)."""
+    from fractions import Fraction
+
+    from derivations import float_paths
+
+    real, cplx = meromorphic.construct(1)
+    x, d, c = Fraction(2, 3), Fraction(3, 4), Fraction(5, 4)
+    g1, G, sigma = float_paths.exact_basis_values((real.M, cplx.M), 1, x, d, c)
+    assert g1 == [Fraction(-5, 13), Fraction(-48, 65), Fraction(36, 65)]
+    assert sigma == sf._BASIS_SIGMA[1] == -1
+    tiny = Fraction(1, 10**30)
+    _, G0, _ = float_paths.exact_basis_values((real.M, cplx.M), 1, tiny, d, c)
+    assert abs(G0[0][0]) + abs(G0[0][1]) < 1e-25 and abs(G0[1][0] - 1) < 1e-25 and abs(G0[1][1]) < 1e-25
+    assert abs(G0[2][0]) < 1e-25 and abs(G0[2][1] - sigma) < 1e-25
+
+
 def test_boundary_condition_and_limits():
     for p in (1, 5, 15):
         B = sf.gamma_basis(np.array([-40.0, 40.0]), p, 0.8)

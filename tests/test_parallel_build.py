@@ -66,9 +66,9 @@ def test_round_trip_refuses_an_emitted_core_with_another_fingerprint():
     module = roundtrip.load_module(generated)
     real, cplx = meromorphic.construct(17)
     right = meromorphic.numerators_digest(real.M, cplx.M)
-    cert = roundtrip.basis_core_by_digest(module, 17, right)
-    assert cert.outcome is Outcome.PASS and "SHA-256" in cert.method
+    cert, numerators = roundtrip.basis_core_by_digest(module, 17, right)
+    assert cert.outcome is Outcome.PASS and "SHA-256" in cert.method and numerators == (real.M, cplx.M)
     wrong = meromorphic.numerators_digest(cplx.M, real.M)      # the same polynomials, in another order
-    assert roundtrip.basis_core_by_digest(module, 17, wrong).outcome is Outcome.FAIL
+    assert roundtrip.basis_core_by_digest(module, 17, wrong)[0].outcome is Outcome.FAIL
     with pytest.raises(CertificationFailure):                  # and recorded, it stops the build
-        CertificateLog().record(roundtrip.basis_core_by_digest(module, 17, wrong))
+        CertificateLog().record(roundtrip.basis_core_by_digest(module, 17, wrong)[0])

@@ -27,6 +27,8 @@ MUTATIONS = [
     ("first_integral", '"P2": core.K**2 * core.Den', '"P2": core.K * core.Den'),
     ("special_case_parameters", "if I23 > 0:", "if I23 < 0:"),
     ("gamma_basis", "sign = -_BASIS_SIGMA[p]", "sign = _BASIS_SIGMA[p]"),
+    # shared by the float path and the mp twin, and still a rotation: only the exact evaluation sees it
+    ("gamma_basis_mp", "rows += [[f * v / k for v in comp]", "rows += [[f * v / k.conjugate() for v in comp]"),
     ("meromorphy", 'case, p2 = "I23=0", float(_p_squared_i23_zero(FLOAT, I11, I22, I13))',
      'case, p2 = "I23=0", float(_p_squared_i13_zero(FLOAT, I11, I22, I13))'),
 ]

@@ -7,8 +7,8 @@ e^{+-i th/2} and expanding both binomials gives its Fourier coefficients
     F_k = (-i)^n / 4^p * sum_{a+b=p-k} C(m, a) C(n, b) (-1)^b,   k = -p..p,  n = 2p - m,
 
 real for even n (a cosine series) and imaginary for odd n (a sine series).  The integer
-matrices are exact and cached per p; :func:`to_fourier` applies them to the coefficients
-of a numerator at any precision (mpmath ``fsum``).  The basis of Poisson solutions is
+matrices are exact and cached per p; :func:`to_fourier_acb` applies them to ball
+coefficients (python-flint ``acb``) at any precision.  The basis of Poisson solutions is
 evaluated in this form: its coefficients are bounded, there is no cancellation for
 large p and no overflow for any t.
 """
@@ -17,9 +17,7 @@ from __future__ import annotations
 from functools import lru_cache
 from math import comb
 
-import mpmath
-
-__all__ = ["fourier_matrices", "to_fourier", "to_fourier_acb"]
+__all__ = ["fourier_matrices", "to_fourier_acb"]
 
 
 @lru_cache(maxsize=None)
@@ -48,36 +46,6 @@ def fourier_matrices(p: int) -> tuple[tuple[tuple[int, ...], ...], tuple[tuple[i
             running += value
             P.append(running)
     return tuple(map(tuple, C)), tuple(map(tuple, S))
-
-
-def to_fourier(numerator, p: int):
-    """(cos coefficients, sin coefficients) of numerator(x)/(1+x^2)^p, k = 0..p (mpmath).
-
-    The coefficients go to fixed point with ``prec + 16`` bits below the largest (exact integers),
-    the products with the integer matrices are exact, and each result is rounded once.  The absolute
-    error is at most ``2^-(prec+16) max|numerator|`` per coefficient (the matrices' column sums are at
-    most 2 * 4^p), below the error the inputs already carry at ``prec`` bits; about 20 times faster
-    than mpmath ``fsum`` at p = 101, where this product dominated ``gamma_basis_mp``.
-
-    >>> alpha, beta = to_fourier([1, 0, 0], 1)   # 1/(1+x^2) = sin^2(th/2) = (1 - cos th)/2
-    >>> [float(a) for a in alpha], [float(b) for b in beta]
-    ([0.5, -0.5], [0.0, 0.0])
-    """
-    C, S = fourier_matrices(p)
-    values = [mpmath.mpf(v) for v in numerator] + [mpmath.mpf(0)] * (2 * p + 1 - len(numerator))
-    top = max((mpmath.mag(v) for v in values if v), default=0)
-    shift = mpmath.mp.prec + 16 - top                   # fixed point: value = N / 2^shift
-    fixed = [int(mpmath.nint(mpmath.ldexp(v, shift))) if v else 0 for v in values]
-    rows = range(2 * p + 1)
-    even = [m for m in rows if m % 2 == 0]               # n = 2p - m even: a cosine term, odd: a sine term
-    odd = [m for m in rows if m % 2 == 1]
-
-    def back(total):
-        return mpmath.ldexp(mpmath.mpf(total), -shift - 2 * p)
-
-    alpha = [back(sum(fixed[m] * C[m][k] for m in even)) for k in range(p + 1)]
-    beta = [back(sum(fixed[m] * S[m][k] for m in odd)) for k in range(p + 1)]
-    return alpha, beta
 
 
 @lru_cache(maxsize=None)

@@ -1,4 +1,4 @@
-"""Run-time ring adapters for the recipes: numeric d, exact (Fraction) or mpmath coefficients.
+"""Run-time ring adapters for the recipes: numeric d, exact (Fraction), mpmath or ball coefficients.
 
 The build's adapters (python-flint, symbolic d) live in ``derivations/recipe_rings.py``;
 these are the ones the generated module uses.  Each adapter provides exactly the
@@ -6,11 +6,9 @@ operations listed in the recipe's docstring.
 """
 from __future__ import annotations
 
-import mpmath
-
 from suslov.kernel.sparse import Sparse
 
-__all__ = ["IntegralRing", "BasisRing", "homogeneous_coefficients"]
+__all__ = ["IntegralRing", "AcbBasisRing", "homogeneous_coefficients"]
 
 
 class IntegralRing:
@@ -47,35 +45,6 @@ def homogeneous_coefficients(P, degree: int) -> list:
             raise ValueError(f"not homogeneous of degree {degree}: monomial w1^{a} w2^{b}")
         out[b] = c
     return out
-
-
-class BasisRing:
-    """Polynomials in x with mpmath coefficients (complex) for a numeric d at the working precision."""
-
-    def __init__(self, d):
-        self.d = mpmath.mpf(d)
-        self.i = mpmath.mpc(0, 1)
-        (self.x,) = Sparse.gens(1)
-
-    @staticmethod
-    def red(P):
-        return P
-
-    @staticmethod
-    def dx(P):
-        return P.derivative(0)
-
-    @staticmethod
-    def divide_exact(P, Q):
-        return P.divide_exact(Q, 0)
-
-    @staticmethod
-    def square_x(P):
-        return P.square_variable(0)
-
-    @staticmethod
-    def rational(n: int, q: int):
-        return mpmath.mpf(n) / q
 
 
 class AcbBasisRing:
