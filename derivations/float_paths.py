@@ -9,9 +9,15 @@ range.  These are *evidence*, recorded with method ``numeric evidence (not a
 certificate)``: a spot check cannot prove a bound.  The seeds are fixed, so the
 certificate log is deterministic.
 
-Also checked: ``gamma_basis_mp`` against an independent evaluation of the certified
-numerators (``derivations.meromorphic_printed.basis_mp``: SymPy ``lambdify`` of the flint objects)
-for p <= 15, the rows of ``gamma_basis`` form a rotation (det +1), ``special_case_parameters``
+``gamma_basis`` and ``gamma_basis_mp`` take their series coefficients from the same ball
+enclosure (python-flint, radius <= 1e-17 and <= 10^-(dps+10)): that the float coefficients are
+within 1e-17 of the exact ones is the ball's own bound; the float-twin comparison checks the float
+evaluation (series, phase reduction, tanh/sech).  The coefficients, the Fourier conversion and the
+normalisation are checked by a route sharing none of them: for every p, ``gamma_basis_mp``
+against the certified numerators evaluated *exactly* in Q at two points with x = e^t, d and
+c = sqrt(d^2+1) rational (:func:`exact_basis_values`), only the phase e^{i(p/d)t} in mpmath.
+
+Also checked: the rows of ``gamma_basis`` form a rotation (det +1), ``special_case_parameters``
 chains into ``omega`` (the body's own general solution, in the returned frame, equals
 ``omega(t, p, d)`` with p > 0), and ``meromorphy`` agrees with ``kovalevskaya_exponents``.
 """
@@ -144,10 +150,17 @@ EXACT_POINTS = ((Fraction(2, 3), Fraction(3, 4), Fraction(5, 4)), (Fraction(5, 4
 
 
 def _at(poly, x: Fraction, d: Fraction) -> tuple:
-    """(A, B) with poly(x, d, i) = A + i B, exactly (poly of degree <= 1 in i, python-flint fmpq_mpoly)."""
-    x, d = flint.fmpq(x.numerator, x.denominator), flint.fmpq(d.numerator, d.denominator)
-    A = poly(x, d, flint.fmpq(0))
-    B = poly(x, d, flint.fmpq(1)) - A
+    """(A, B) with poly(x, d, i) = A + i B, exactly (poly of degree <= 1 in i, python-flint fmpq_mpoly).
+
+    x and d are substituted as constants (``compose``), leaving a polynomial in i alone: 4 times faster at
+    p = 201 than two full evaluations."""
+    ctx = poly.context()
+    constant = lambda v: ctx.constant(flint.fmpq(v.numerator, v.denominator))  # noqa: E731
+    in_i = poly.compose(constant(x), constant(d), ctx.gens()[2])
+    parts = {monomial[2]: coefficient for monomial, coefficient in zip(in_i.monoms(), in_i.coeffs())}
+    if set(parts) - {0, 1}:
+        raise ArithmeticError("_at: a numerator of degree > 1 in i (not in normal form modulo i^2 + 1)")
+    A, B = (parts.get(k, flint.fmpq(0)) for k in (0, 1))
     return Fraction(int(A.p), int(A.q)), Fraction(int(B.p), int(B.q))
 
 

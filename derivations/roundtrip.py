@@ -19,8 +19,8 @@ with ``--verify DIR``, from any generated tree) and certifies the module itself:
 3. **Float paths (numeric evidence, labelled so).**  Each float64 function is compared
    with its mpmath twin at seeded points including the hard cases (large |t|, small and
    large d, p near odd integers, large omega), for every p in range, against the error
-   bound stated in its docstring; ``gamma_basis_mp`` is compared with an independent
-   evaluation of the certified numerators (SymPy ``lambdify``) and the rows are checked to
+   bound stated in its docstring; ``gamma_basis_mp`` is compared with the certified numerators
+   evaluated exactly at rational points (every p) and the rows are checked to
    form a rotation; ``special_case_parameters`` must chain into ``omega`` (the body's own
    general solution in the returned frame); ``meromorphy`` must agree with
    ``kovalevskaya_exponents`` in its special cases.
