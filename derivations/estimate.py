@@ -5,7 +5,7 @@ each per-p phase the fitted cost of one p, ``c p^k`` (residue's Frobenius logari
 (Theorem 3.5), the meromorphic bases (Theorem 6.1), the logarithms at s1..s4 of section 5.2, the
 first integrals, the round trip of the emitted module), summed over the p the build will certify
 and, for the phases that run on the workers, divided by their number; plus the rest of the build
-as measured at the largest benchmarked pmax.  An estimate from a power law,
+as measured by the largest one-process benchmark.  An estimate from a power law,
 not a promise: the build says so, and proceeds.
 """
 from __future__ import annotations
@@ -25,15 +25,16 @@ def estimate_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH)
     try:
         data = json.loads(bench.read_text(encoding="utf-8"))
         growth = data["growth"]
-        base_run = next(r for r in data["runs"] if r["pmax"] == data["largest_pmax"] and r["jobs"] == 1)
-    except (OSError, ValueError, KeyError, StopIteration):
+        # the rest of the build from the largest one-process run (pmax 201 is benchmarked on all cores only)
+        base_run = max((r for r in data["runs"] if r["jobs"] == 1), key=lambda r: r["pmax"])
+    except (OSError, ValueError, KeyError):
         return None
     workers = max(1, workers or os.cpu_count() or 1)
     per_p_total, measured_total = 0.0, 0.0
     for name, g in growth.items():
         share = 1.0 / workers if name in PARALLEL else 1.0
         top = max(pmax, GALOIS_PMAX) if name == "galois" else pmax
-        measured_top = max(data["largest_pmax"], GALOIS_PMAX) if name == "galois" else data["largest_pmax"]
+        measured_top = max(base_run["pmax"], GALOIS_PMAX) if name == "galois" else base_run["pmax"]
         for c in g["classes"]:
             cost = lambda n, c=c: sum(c["coefficient"] * p ** c["exponent"]  # noqa: E731
                                       for p in range(c["first"], n + 1, c["step"]))

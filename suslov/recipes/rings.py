@@ -12,7 +12,7 @@ __all__ = ["IntegralRing", "AcbBasisRing", "homogeneous_coefficients"]
 
 
 class IntegralRing:
-    """Polynomials in (w1, w2) with coefficients in the number type of ``d`` (Fraction or mpf)."""
+    """Polynomials in (w1, w2) with coefficients in the number type of ``d`` (Fraction, python-flint fmpq or mpf)."""
 
     def __init__(self, d):
         self.d = d
