@@ -194,17 +194,21 @@ def check_basis_mp_exactly(log: CertificateLog, module, p: int, core) -> Certifi
     points; only the phase e^{i(p/d)t}, t = log x, is irrational (mpmath at 60 digits).  A route with no
     Fourier series, no balls and no recipe: the numerators are those certified (exact equality above)."""
     worst = mpmath.mpf(0)
-    with stopwatch() as elapsed, mpmath.workdps(DPS + 20):
+    with stopwatch() as elapsed:
         for x, d, c in EXACT_POINTS:
             g1, G, sigma = exact_basis_values(core, p, x, d, c)
-            t = mpmath.log(mpmath.mpf(x.numerator) / x.denominator)
-            phase = mpmath.expj(p * t / (mpmath.mpf(d.numerator) / d.denominator))
-            rotated = [phase * mpmath.mpc(mpmath.mpf(re.numerator) / re.denominator,
-                                          mpmath.mpf(im.numerator) / im.denominator) for re, im in G]
-            expected = [[mpmath.mpf(v.numerator) / v.denominator for v in g1], [mpmath.re(v) for v in rotated],
-                        [-(sigma or 0) * mpmath.im(v) for v in rotated]]
-            twin = module.gamma_basis_mp(t, p, mpmath.mpf(d.numerator) / d.denominator, dps=DPS + 10)
-            worst = max(worst, max(abs(expected[r][c_] - twin[r, c_]) for r in range(3) for c_ in range(3)))
+            with mpmath.workdps(DPS + 20):
+                t = mpmath.log(mpmath.mpf(x.numerator) / x.denominator)
+                d_mp = mpmath.mpf(d.numerator) / d.denominator
+                phase = mpmath.expj(p * t / d_mp)
+                rotated = [phase * mpmath.mpc(mpmath.mpf(re.numerator) / re.denominator,
+                                              mpmath.mpf(im.numerator) / im.denominator) for re, im in G]
+                expected = [[mpmath.mpf(v.numerator) / v.denominator for v in g1], [mpmath.re(v) for v in rotated],
+                            [-(sigma or 0) * mpmath.im(v) for v in rotated]]
+            # called at the caller's precision (15 digits here), as a user would: dps alone must set the accuracy
+            twin = module.gamma_basis_mp(t, p, d_mp, dps=DPS + 10)
+            with mpmath.workdps(DPS + 20):
+                worst = max(worst, max(abs(expected[r][c_] - twin[r, c_]) for r in range(3) for c_ in range(3)))
             if sigma is None or sigma != module._BASIS_SIGMA[p]:
                 worst = mpmath.inf
     return _record(log, f"p = {p}: gamma_basis_mp equals the certified numerators evaluated exactly at x = e^t = 2/3, "

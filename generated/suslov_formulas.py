@@ -309,8 +309,7 @@ def _float_coefficients(p: int, d: float) -> tuple[np.ndarray, int]:
         exact = _exact_coefficients(p, Fraction(d))
         rows = [exact[name] for name in ("P1", "P2", "P3")]
         top = max((abs(v) for row in rows for v in row), default=Fraction(1)) or Fraction(1)
-        E = top.numerator.bit_length() - top.denominator.bit_length() + 1   # top / 2^E in (1/4, 2)
-        E += 1 if top >= Fraction(2) ** E else 0
+        E = top.numerator.bit_length() - top.denominator.bit_length() + 1   # top / 2^E in (1/4, 1)
         two_E = Fraction(2) ** E
         _FLOAT_COEFFICIENTS[key] = (np.array([[float(v / two_E) for v in row] for row in rows]), E)
     return _FLOAT_COEFFICIENTS[key]
@@ -360,12 +359,12 @@ def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, g
         coefficients, E = _float_coefficients(p, float(dv))
         value[mask] = horner.combination(coefficients, w1[mask], w2[mask], g[:, mask]) * mantissa[mask] ** p
         exponents = p * exponent[mask].astype(np.int64) + E
-        with np.errstate(over="ignore"):
-            value[mask] = np.ldexp(value[mask], np.clip(exponents, -4000, 4000))
+        with np.errstate(over="ignore"):   # an overflow is reported below, with its point
+            value[mask] = np.ldexp(value[mask], np.clip(exponents, -4000, 4000))   # beyond +-4000: 0 or inf anyway
     if not np.all(np.isfinite(value)):
         where = int(np.flatnonzero(~np.isfinite(value))[0])
-        raise ValueError(f"first_integral overflows float64 at p={p}, d={float(d[where])!r}, omega=({float(w1[where])!r}, "
-                         f"{float(w2[where])!r}): |F3| beyond 1.8e308; use first_integral_mp") from None
+        point = f"p={p}, d={float(d[where])!r}, omega=({float(w1[where])!r}, {float(w2[where])!r})"
+        raise ValueError(f"first_integral overflows float64 at {point}: |F3| beyond 1.8e308; use first_integral_mp")
     return value.reshape(shape)
 
 
@@ -400,12 +399,19 @@ def _basis_p(p) -> int:
 
 
 def _arb_of(value) -> "flint.arb":
-    """A ball containing a binary float or mpf exactly (at the current precision, which holds its mantissa)."""
-    man, exp = mpmath.mpf(value).man_exp
-    return flint.arb(int(man)) * flint.arb(2) ** int(exp)
+    """A ball containing a float or an mpf exactly (the precision set holds its mantissa).
+
+    An mpf is read from its raw mantissa and exponent: ``mpmath.mpf(value)`` would round it to
+    mpmath's current precision, which is the caller's, not the ``dps`` asked for.
+    """
+    if isinstance(value, mpmath.mpf):
+        man, exp = value.man_exp
+        return flint.arb(int(man)) * flint.arb(2) ** int(exp)
+    exact = Fraction(float(value))
+    return flint.arb(flint.fmpq(exact.numerator, exact.denominator))
 
 
-def _series_balls(p: int, d, radius: float, bits: int):
+def _series_balls(p: int, d, radius: mpmath.mpf, bits: int):
     """Ball coefficients of the basis rows' trigonometric series, every radius <= ``radius``.
 
     The recipe and the Fourier products run in python-flint ball arithmetic from the exact
@@ -427,23 +433,27 @@ def _series_balls(p: int, d, radius: float, bits: int):
             rows = [[v / (f * s) for v in comp] for comp, f in zip(real_lists, (1, c, c))]
             rows += [[f * v / k for v in comp] for comp, f in zip(complex_lists, (c, 1, 1))]
             alpha, beta = fourier.to_fourier_acb(rows, p)
-            if all(float(v.real.rad()) <= radius and float(v.imag.rad()) <= radius for m in (alpha, beta) for v in m.entries()):
+            # compared as mpf: a float radius such as 10^-(dps+10) would underflow to 0 beyond dps ~ 300
+            parts = (part for m in (alpha, beta) for v in m.entries() for part in (v.real, v.imag))
+            if all(_mpf_of(part.rad()) <= radius for part in parts):
                 return alpha, beta
             bits *= 2
     finally:
         flint.ctx.prec = saved
 
 
-def _series_midpoints(p: int, d, radius: float, bits: int, convert) -> list:
+def _series_midpoints(p: int, d, radius: mpmath.mpf, bits: int, convert) -> list:
     """``convert``-ed ball midpoints, nested [row][component][re/im][cos/sin][k] (row 0: gamma^(1), 1: G)."""
     alpha, beta = _series_balls(p, d, radius, bits)
     return [[[[[convert(getattr(matrix[3 * row + comp, k], part).mid()) for k in range(p + 1)]
                for matrix in (alpha, beta)] for part in ("real", "imag")] for comp in range(3)] for row in range(2)]
 
 
-def _mpf_of(ball_mid) -> mpmath.mpf:
-    man, exp = ball_mid.man_exp()
-    return mpmath.mpf((int(man), int(exp)))   # exact: a binary midpoint is an mpf
+def _mpf_of(exact) -> mpmath.mpf:
+    """An arb with radius 0 (a ball's midpoint or radius) as the same binary number in mpmath, exactly
+    (``make_mpf``: ``mpmath.mpf((man, exp))`` would round to mpmath's current precision)."""
+    man, exp = exact.man_exp()
+    return mpmath.mp.make_mpf(mpmath.libmp.from_man_exp(int(man), int(exp)))
 
 
 _SERIES: dict = {}
@@ -451,9 +461,10 @@ _SERIES: dict = {}
 
 def _basis_series(p: int, d, dps: int) -> list:
     """mpf coefficients within 10^-(dps+10) of the exact ones (:func:`_series_balls`), cached per (p, d, dps)."""
-    key = (p, mpmath.mpf(d), dps)
+    key = (p, d._mpf_, dps)   # the raw value: two d that agree to the caller's precision are still two d
     if key not in _SERIES:
-        _SERIES[key] = _series_midpoints(p, d, 10.0 ** -(dps + 10), int(3.33 * (dps + 10)) + 12 * p, _mpf_of)
+        radius = mpmath.mpf(10) ** -(dps + 10)
+        _SERIES[key] = _series_midpoints(p, d, radius, int(3.33 * (dps + 10)) + 12 * p, _mpf_of)
     return _SERIES[key]
 
 
@@ -468,7 +479,7 @@ def _series_float(p: int, d: float) -> np.ndarray:
     """
     key = (p, d)
     if key not in _SERIES_FLOAT:
-        _SERIES_FLOAT[key] = np.array(_series_midpoints(p, d, 1e-17, 64 + 12 * p, float))
+        _SERIES_FLOAT[key] = np.array(_series_midpoints(p, d, mpmath.mpf(1e-17), 64 + 12 * p, float))
     return _SERIES_FLOAT[key]
 
 

@@ -87,6 +87,25 @@ def test_exact_values_of_the_certified_numerators_match_the_printed_p1_solution(
     assert abs(G0[2][0]) < 1e-25 and abs(G0[2][1] - sigma) < 1e-25
 
 
+def test_mp_twin_accuracy_is_set_by_dps_not_by_the_callers_precision():
+    """Called at mpmath's default 15 digits with dps = 60 (as a user would), p = 1 must match the paper's
+    printed gamma^(1) = (tanh t, -sech t / c, d sech t / c) to 1e-55; and two d that agree to 40 digits
+    are two d (the coefficient cache is keyed by the exact value), so their results differ."""
+    t, d = mpmath.mpf(0.25), mpmath.mpf(0.5)
+    assert mpmath.mp.dps == 15
+    M = sf.gamma_basis_mp(t, 1, d, dps=60)
+    with mpmath.workdps(60):
+        c = mpmath.sqrt(d * d + 1)
+        printed = [mpmath.tanh(t), -mpmath.sech(t) / c, d * mpmath.sech(t) / c]
+        assert max(abs(M[0, j] - printed[j]) for j in range(3)) < mpmath.mpf(10) ** -55
+        assert abs(mpmath.det(M) - 1) < mpmath.mpf(10) ** -55
+        near = d + mpmath.mpf(10) ** -45
+    N = sf.gamma_basis_mp(t, 1, near, dps=60)
+    with mpmath.workdps(60):
+        c = mpmath.sqrt(near * near + 1)
+        assert abs(N[0, 1] + mpmath.sech(t) / c) < mpmath.mpf(10) ** -55 and N[0, 1] != M[0, 1]
+
+
 def test_boundary_condition_and_limits():
     for p in (1, 5, 15):
         B = sf.gamma_basis(np.array([-40.0, 40.0]), p, 0.8)

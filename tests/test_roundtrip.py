@@ -29,6 +29,9 @@ MUTATIONS = [
     ("gamma_basis", "sign = -_BASIS_SIGMA[p]", "sign = _BASIS_SIGMA[p]"),
     # shared by the float path and the mp twin, and still a rotation: only the exact evaluation sees it
     ("gamma_basis_mp", "rows += [[f * v / k for v in comp]", "rows += [[f * v / k.conjugate() for v in comp]"),
+    # the coefficients rounded to the caller's precision instead of dps: off by 1e-17, seen only at high dps
+    ("gamma_basis_mp", "return mpmath.mp.make_mpf(mpmath.libmp.from_man_exp(int(man), int(exp)))",
+     "return mpmath.mpf((int(man), int(exp)))"),
     ("meromorphy", 'case, p2 = "I23=0", float(_p_squared_i23_zero(FLOAT, I11, I22, I13))',
      'case, p2 = "I23=0", float(_p_squared_i13_zero(FLOAT, I11, I22, I13))'),
 ]
