@@ -87,9 +87,9 @@ def check_omega_general(log: CertificateLog, module) -> Certificate:
 
 
 def first_integral_bound(p: int, s, g, sizes) -> mpmath.mpf:
-    """The error bound stated in first_integral's docstring (in mpmath: s^p sum |a| may exceed float64)."""
+    """The error bound stated in first_integral's docstring; ``sizes`` (sum_k |a_ik| per i) as mpf, since
+    s^p sum |a| may exceed float64."""
     s = mpmath.mpf(s)
-    sizes = [mpmath.mpf(v.numerator) / v.denominator for v in sizes]   # exact Fractions, maybe beyond float64
     return 2e-15 * (p + 1) * s**p * mpmath.fsum(abs(gi) * si for gi, si in zip(g, sizes)) + mpmath.mpf(5e-324)
 
 
@@ -102,6 +102,7 @@ def check_first_integral(log: CertificateLog, module, p: int) -> Certificate:
         for d in (0.5, 1e-2, 50.0, float(10 ** rng.uniform(-1, 1))):
             coefficients = module.first_integral_coefficients(p, d)
             sizes = [sum(abs(a) for a in coefficients[name]) for name in ("P1", "P2", "P3")]   # exact
+            sizes = [mpmath.mpf(v.numerator) / v.denominator for v in sizes]   # once per d, maybe beyond float64
             for size in (1e-3, 1.0, 20.0):
                 w1, w2 = (float(v) for v in rng.uniform(-size, size, 2))
                 g = rng.normal(size=3)

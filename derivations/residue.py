@@ -338,7 +338,8 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
             values, log.map_per_p("Frobenius logarithms at t0", values, logarithm_verdict)):
         cert = log.record(Certificate(
             f"p = {p_value}: local solutions of eq:ps at t0 = i pi/2 have {verdict}", "Theorem 3.5",
-            "exact Frobenius recursion in Q[d, 1/d] (a subring of Q(d); resonance obstructions)", Outcome.PASS, seconds, count, detail))
+            "exact Frobenius recursion in Q[d, 1/d] (a subring of Q(d); resonance obstructions)", Outcome.PASS,
+            seconds, count, detail))
         log_rows.append({"p": p_value, "parity": "odd" if p_value % 2 else "even", "verdict": verdict,
                          "obstructions": typeset, "certificate": cert.key})
     has_logs = [row["p"] for row in log_rows if row["verdict"] != "no logarithms"]
