@@ -16,7 +16,9 @@ it is imported from the staging directory and checked against the certified obje
 before anything is moved into place.
 
 Exit status: 0 success; 1 a certificate failed (the claim is named; the output
-directory is left as it was) or ``--verify`` found a discrepancy; 2 bad command line;
+directory is left as it was) or ``--verify`` found a discrepancy (or unreadable certificates);
+2 bad command line, or an output path that is not the build's to replace (a file, a directory
+with other content, an unwritable place: refused before any work, see ``suslov/outdir.py``);
 3 ``--check`` found differences.
 """
 from __future__ import annotations
@@ -34,10 +36,11 @@ from derivations.certificates import CertificationFailure
 from derivations.estimate import estimate_seconds
 from derivations.options import PMAX_LIMIT, BuildOptions
 from derivations.pdf import PdfError, compile_pdfs, document_report
-from derivations.pipeline import (GENERATED, ROOT, Progress, compare_trees, derive, install_tree, is_byproduct,
-                                  summary, write_atomically)
+from derivations.pipeline import (GENERATED, ROOT, Progress, claim_output, compare_trees, derive, install_tree,
+                                  is_byproduct, summary, write_atomically)
 from derivations.registry import DERIVATIONS
 from suslov.executor import SchedulerError, check_reachable, scheduler_address
+from suslov.outdir import OutputRefused
 
 
 def _pmax(text: str) -> int:
@@ -124,13 +127,17 @@ def verify_tree(directory: Path, pmax: int | None, quiet: bool) -> int:
     if not (directory / "suslov_formulas.py").is_file():
         print(f"build_formulas.py: --verify {directory}: no suslov_formulas.py there", file=sys.stderr)
         return 2
+    try:   # a tree whose certificates cannot be read is refused, whatever the flags
+        document = json.loads((directory / "certificates.json").read_text(encoding="utf-8"))
+        stated = document["pmax"]
+        if not isinstance(stated, int) or not isinstance(document["certificates"], list):
+            raise ValueError("pmax or certificates of the wrong type")
+    except (OSError, ValueError, KeyError, TypeError) as error:
+        print(f"build_formulas.py: --verify {directory}: certificates.json cannot be read ({error}); a tree without "
+              "its certificates is not verified", file=sys.stderr)
+        return 1
     if pmax is None:
-        try:
-            pmax = json.loads((directory / "certificates.json").read_text(encoding="utf-8"))["pmax"]
-        except (OSError, ValueError, KeyError) as error:
-            print(f"build_formulas.py: --verify {directory}: cannot read pmax from certificates.json ({error}); "
-                  "give --pmax", file=sys.stderr)
-            return 2
+        pmax = stated
     try:
         build = derive(BuildOptions(pmax=pmax), list(MODULE_NEEDS), Progress(quiet=quiet))
     except CertificationFailure as failure:
@@ -191,6 +198,12 @@ def main(argv: list[str] | None = None) -> int:
             print(f"build_formulas.py: {exc}; nothing was written", file=sys.stderr)
             return 2
     target = args.out if args.out is not None else (None if args.only else GENERATED)
+    if target is not None:
+        try:   # before any work: a file, someone else's directory or an unwritable place is refused
+            target = claim_output(target)
+        except OutputRefused as exc:
+            print(f"build_formulas.py: --out {exc}; nothing was done", file=sys.stderr)
+            return 2
     key = build_key(options, None) if use_cache and not args.only else None
     if key is not None:
         status = _from_cache(key, target, args)
@@ -215,8 +228,9 @@ def main(argv: list[str] | None = None) -> int:
         reference = target
         with tempfile.TemporaryDirectory(prefix="suslov-check-") as tmp:
             fresh = Path(tmp) / "generated"
-            if not _write(build, fresh):
-                return 1
+            status = _write(build, fresh)
+            if status:
+                return status
             if key is not None:
                 TreeCache().store(key, fresh, keep=lambda name: not is_byproduct(name))
             _summary(build, args.quiet)
@@ -226,8 +240,9 @@ def main(argv: list[str] | None = None) -> int:
         _summary(build, args.quiet)
         print("(--only without --out: certified, nothing written)")
         return 0
-    if not _write(build, target):
-        return 1
+    status = _write(build, target)
+    if status:
+        return status
     if key is not None:
         TreeCache().store(key, target, keep=lambda name: not is_byproduct(name))
     _summary(build, args.quiet)
@@ -281,16 +296,32 @@ def _summary(build, quiet: bool) -> None:
         print(summary(build))
 
 
-def _write(build, target: Path) -> bool:
-    """Render, certify the emitted module (round trip) and swap into place; False on a failed certificate."""
+def _write(build, target: Path) -> int:
+    """Render, certify the emitted module (round trip) and swap into place.
+
+    0 written; 1 a certificate failed; 2 the output cannot be written (nothing was replaced).
+    """
     try:
         write_atomically(build, target)
+    except (OutputRefused, OSError) as error:
+        print(f"build_formulas.py: cannot write {target}: {error}; {target} is unchanged", file=sys.stderr)
+        return 2
     except CertificationFailure as failure:
         print(f"build_formulas.py: {failure}", file=sys.stderr)
         print(f"build_formulas.py: nothing was written ({target} is unchanged)", file=sys.stderr)
-        return False
-    return True
+        return 1
+    return 0
+
+
+def run(argv: list[str] | None = None) -> int:
+    """:func:`main`, with Ctrl-C reported in one line (the output is swapped in whole or not at all)."""
+    try:
+        return main(argv)
+    except KeyboardInterrupt:
+        print("build_formulas.py: interrupted; nothing was replaced (an output is swapped in whole or not at all)",
+              file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run())

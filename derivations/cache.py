@@ -29,8 +29,10 @@ import json
 import os
 import platform
 import shutil
-import tempfile
 from pathlib import Path
+
+from suslov.executor import TMP_PREFIX
+from suslov.outdir import make_dir, remove_stale
 
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGES = ("derivations", "suslov")
@@ -148,20 +150,28 @@ class TreeCache:
         return entry
 
     def store(self, key: str, tree: Path, keep=lambda name: True) -> None:
-        self.root.mkdir(parents=True, exist_ok=True)
-        staging = Path(tempfile.mkdtemp(prefix=f".{key}.", dir=self.root))
+        make_dir(self.root)
+        remove_stale(self.root, TMP_PREFIX)
+        staging = self.root / f"{TMP_PREFIX}-{os.getpid()}-{key}"
+        shutil.rmtree(staging, ignore_errors=True)
+        os.mkdir(staging, 0o777)
         try:
             files = {}
             for item in sorted(Path(tree).iterdir()):
                 if item.is_file() and keep(item.name):
-                    shutil.copy2(item, staging / item.name)
+                    shutil.copyfile(item, staging / item.name)
                     files[item.name] = hashlib.sha256(item.read_bytes()).hexdigest()
             (staging / "manifest.json").write_text(json.dumps({"key": key, "files": files}, indent=1,
                                                               sort_keys=True))
             final = self.root / key
             if final.exists():
-                shutil.rmtree(final)
-            staging.rename(final)
+                shutil.rmtree(final, ignore_errors=True)
+            try:
+                staging.rename(final)
+            except OSError:
+                if self.lookup(key) is None:   # not a concurrent build's equal entry: a real failure
+                    raise
+                shutil.rmtree(staging, ignore_errors=True)
         except BaseException:
             shutil.rmtree(staging, ignore_errors=True)
             raise

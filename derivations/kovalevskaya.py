@@ -211,7 +211,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                     "p^2 = Lambda^2 in the case I13 = 0."),
             Emitted("p_squared_i23_zero", (I11, I22, I13), (), (restricted["i23"],), (c_lam.key, c_real_cases.key),
                     "p^2 = Lambda^2 in the case I23 = 0.")]
-    result.exports.update(lambda_real=real, lambda_imag=imag, point=point, emit=emit)
+    result.exports.update(lambda_real=real, lambda_imag=imag, point=point, emit=emit, matrix=K)
     return result
 
 

@@ -21,13 +21,13 @@ from __future__ import annotations
 import filecmp
 import json
 import math
-import os
 import shutil
 import sys
-import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from suslov import outdir
 
 from .certificates import CertificateLog, Outcome
 from .options import BuildOptions
@@ -232,11 +232,21 @@ def render_into(build: Build, directory: Path) -> list[str]:
                       "cache_report.json"]
 
 
+BUILD_TOOL = "build_formulas.py"
+BUILD_SIGNATURE = "certificates.json"   # recognises build outputs written before the marker existed
+
+
+def claim_output(target: Path) -> Path:
+    """``target`` as an absolute path the build may replace (:func:`suslov.outdir.claim`: refuses a file,
+    a foreign directory or an unwritable place with :class:`suslov.outdir.OutputRefused`)."""
+    return outdir.claim(target, BUILD_TOOL, BUILD_SIGNATURE)
+
+
 def write_atomically(build: Build, target: Path) -> None:
-    """Render into a temporary sibling, then swap it into ``target``."""
-    target = Path(target)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.new-", dir=target.parent))
+    """Render into a staging sibling, then swap it into ``target`` (crash-safe: :mod:`suslov.outdir`)."""
+    target = claim_output(target)
+    outdir.make_dir(target.parent)
+    staging = outdir.new_staging(target, BUILD_TOOL)
     try:
         if render_into(build, staging).count("suslov_formulas.py") and not build.round_trip_done:
             # certify the module as emitted, then render again so the round-trip certificates are in every output
@@ -253,13 +263,13 @@ def write_atomically(build: Build, target: Path) -> None:
 
 def install_tree(source: Path, target: Path) -> None:
     """Copy the files of ``source`` (a cached build) into ``target``, swapped in like a fresh build."""
-    target = Path(target)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.new-", dir=target.parent))
+    target = claim_output(target)
+    outdir.make_dir(target.parent)
+    staging = outdir.new_staging(target, BUILD_TOOL)
     try:
         for item in Path(source).iterdir():
-            if item.is_file() and item.name != "manifest.json":
-                shutil.copy2(item, staging / item.name)
+            if item.is_file() and item.name not in ("manifest.json", outdir.MARKER):
+                shutil.copyfile(item, staging / item.name)
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
@@ -267,24 +277,12 @@ def install_tree(source: Path, target: Path) -> None:
 
 
 def swap_in(staging: Path, target: Path) -> None:
-    """Replace ``target`` by ``staging`` (a rename each way; TeX by-products of ``target`` are kept)."""
+    """Replace ``target`` by ``staging`` (:func:`suslov.outdir.swap_in`); TeX by-products of ``target`` are kept."""
     if target.is_dir():  # a user's PDF (and the other TeX by-products) survives the rebuild
         for item in target.iterdir():
             if item.is_file() and is_byproduct(item.name) and not (staging / item.name).exists():
-                shutil.copy2(item, staging / item.name)
-    backup = None
-    if target.exists():
-        backup = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
-        os.rmdir(backup)
-        os.rename(target, backup)
-    try:
-        os.rename(staging, target)
-    except BaseException:
-        if backup is not None:
-            os.rename(backup, target)
-        raise
-    if backup is not None:
-        shutil.rmtree(backup, ignore_errors=True)
+                shutil.copyfile(item, staging / item.name)
+    outdir.swap_in(staging, target)
 
 
 def compare_trees(expected: Path, actual: Path) -> list[str]:

@@ -43,8 +43,9 @@ from numpy.typing import ArrayLike
 from suslov.kernel import fourier, horner, phase, trig_series
 from suslov.kernel.contexts import ARB, FLOAT, MP
 from suslov.kernel.enclosure import to_arb
+from suslov.kernel.lru import BoundedCache
 from suslov.kernel.frames import canonical_frame, rotation_about_e3
-from suslov.kernel.validate import mp_real, odd_p, rational, real_array, real_scalar
+from suslov.kernel.validate import PREC_RANGE, mp_real, odd_p, precision, rational, real_array, real_scalar
 from suslov.recipes import basis as _basis_recipe
 from suslov.recipes import integrals as _integral_recipe
 from suslov.recipes.rings import AcbBasisRing, IntegralRing, homogeneous_coefficients
@@ -179,6 +180,7 @@ def omega_mp(t, p, d, dps: int = 50) -> tuple:
     >>> mpmath.nstr(omega_mp("0.25", 3, "0.5", dps=30)[0], 20)   # 6 tanh(1/4)
     '1.4695119744222547757'
     """
+    dps = precision("dps", dps)
     with mpmath.workdps(dps):
         t, p, d = mp_real("t", t), mp_real("p", p, nonzero=True), mp_real("d", d, positive=True)
         w1, w2 = _omega(MP, t, p, d)
@@ -235,6 +237,7 @@ def omega_general(t: ArrayLike, I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, 
 
 def omega_general_mp(t, I11, I22, I13, I23, branch: int = 1, dps: int = 50) -> tuple:
     """mpmath twin of :func:`omega_general` (scalars; strings for exact decimals), at ``dps`` digits."""
+    dps = precision("dps", dps)
     with mpmath.workdps(dps):
         t = mp_real("t", t)
         I11, I22 = mp_real("I11", I11, positive=True), mp_real("I22", I22, positive=True)
@@ -294,7 +297,9 @@ def first_integral_coefficients(p: int, d) -> dict:
     return _exact_coefficients(_integral_p(p), rational("d", d, positive=True))
 
 
-_FLOAT_COEFFICIENTS: dict = {}
+# per-(p, d) tables kept for repeated calls on one body; bounded so that sweeps over many bodies are not
+CACHE_SIZE = 1024
+_FLOAT_COEFFICIENTS = BoundedCache(CACHE_SIZE)
 
 
 def _float_coefficients(p: int, d: float) -> tuple[np.ndarray, int]:
@@ -374,6 +379,7 @@ def first_integral_mp(p: int, d, omega1, omega2, gamma1, gamma2, gamma3, dps: in
     >>> mpmath.nstr(first_integral_mp(1, "0.5", 1, 2, "0.6", "0.8", 0, dps=30), 25)   # w1 g1 + w2 g2/(d^2+1)
     '1.88'
     """
+    dps = precision("dps", dps)
     p = _integral_p(p)
     exact = _exact_coefficients(p, rational("d", d, positive=True))
     with mpmath.workdps(dps):
@@ -456,7 +462,7 @@ def _mpf_of(exact) -> mpmath.mpf:
     return mpmath.mp.make_mpf(mpmath.libmp.from_man_exp(int(man), int(exp)))
 
 
-_SERIES: dict = {}
+_SERIES = BoundedCache(CACHE_SIZE)
 
 
 def _basis_series(p: int, d, dps: int) -> list:
@@ -468,7 +474,7 @@ def _basis_series(p: int, d, dps: int) -> list:
     return _SERIES[key]
 
 
-_SERIES_FLOAT: dict = {}
+_SERIES_FLOAT = BoundedCache(CACHE_SIZE)
 
 
 def _series_float(p: int, d: float) -> np.ndarray:
@@ -494,7 +500,7 @@ def _careful_phase(p: int, d: float, t: np.ndarray) -> tuple[np.ndarray, np.ndar
     return cos_out, sin_out
 
 
-_SERIES_MATRIX: dict = {}
+_SERIES_MATRIX = BoundedCache(CACHE_SIZE)
 
 
 def _series_matrix(p: int, d: float) -> np.ndarray:
@@ -575,6 +581,7 @@ def gamma_basis_mp(t, p: int, d, dps: int = 50):
     >>> mpmath.nstr(mpmath.det(M), 25), bool(abs(M[0, 0] - math.tanh(0.3)) < 1e-15)   # a rotation; gamma1 = tanh t
     ('1.0', True)
     """
+    dps = precision("dps", dps)
     p = _basis_p(p)
     with mpmath.workdps(dps):
         t = mp_real("t", t)
@@ -640,6 +647,7 @@ def scattering_angle_mp(p, d, dps: int = 50):
     >>> mpmath.nstr(scattering_angle_mp(1, "0.7", dps=30), 25)   # odd p: pi
     '3.141592653589793238462643'
     """
+    dps = precision("dps", dps)
     with mpmath.workdps(dps + 10):
         p, d = mp_real("p", p), mp_real("d", d, positive=True)
         s, c = abs(mpmath.sinpi(p / 2)), abs(mpmath.cospi(p / 2))
@@ -661,8 +669,7 @@ def scattering_angle_ball(p, d, prec: int = 128):
     >>> ball.rad() < 1e-28, round(float(ball.mid()), 12)
     (True, 2.968844459491)
     """
-    if isinstance(prec, bool) or not isinstance(prec, int) or not 16 <= prec <= 100_000:
-        raise ValueError(f"prec={prec!r}: must be an integer number of bits in [16, 100000]")
+    prec = precision("prec", prec, PREC_RANGE, "bits")
     saved = flint.ctx.prec
     flint.ctx.prec = prec + 20
     try:

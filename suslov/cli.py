@@ -17,9 +17,11 @@ from pathlib import Path
 
 from .engine import execute, write_outputs
 from .executor import SCHEDULER_ENV, SchedulerError, scheduler_address
+from .outdir import OutputRefused
+from .outputs import check_out
 from .planner import make_plan
 from .scene import SceneError, load_scene
-from .sweep import chunk_dir, plan_sweep, run_sweep
+from .sweep import LargeSweep, chunk_dir, plan_sweep, run_sweep
 
 
 def main(argv=None) -> int:
@@ -31,6 +33,8 @@ def main(argv=None) -> int:
     sim.add_argument("--explain", action="store_true", help="print the plan and exit without computing")
     sim.add_argument("--quiet", action="store_true", help="no progress lines")
     sim.add_argument("--workers", type=int, help="sweeps: local worker processes (default: all cores)")
+    sim.add_argument("--yes", action="store_true",
+                     help="sweeps: run even when above 200000 points or an hour of estimated work")
     sim.add_argument("--scheduler", help=f"sweeps: dask.distributed scheduler address (default: ${SCHEDULER_ENV})")
     args = parser.parse_args(argv)
     if args.workers is not None and args.workers < 1:
@@ -54,6 +58,11 @@ def main(argv=None) -> int:
     if not args.out:
         print("suslov: error: --out DIR is required (or --explain)", file=sys.stderr)
         return 2
+    try:
+        check_out(args.out)
+    except OutputRefused as exc:
+        print(f"suslov: error: --out {exc}", file=sys.stderr)
+        return 2
     files = []
     status = _guarded(f"scene {scene.path}", lambda: files.extend(write_outputs(execute(plan, progress), args.out,
                                                                              progress)))
@@ -66,8 +75,11 @@ def _guarded(what: str, action) -> int:
     """Run ``action``; map bad output directories and schedulers to 2, failed computations to 1."""
     try:
         action()
-    except (FileExistsError, SchedulerError) as exc:
+    except (OutputRefused, SchedulerError, LargeSweep) as exc:
         print(f"suslov: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:   # the output cannot be written (read-only file system, disk full): bad output place
+        print(f"suslov: error: {what}: cannot write the output: {exc}", file=sys.stderr)
         return 2
     except (RuntimeError, ArithmeticError, ValueError) as exc:
         print(f"suslov: error: {what}: computation failed: {exc}", file=sys.stderr)
@@ -86,14 +98,22 @@ def _sweep(scene, args, progress) -> int:
     outcome = []
     try:
         status = _guarded(f"sweep {scene.path}", lambda: outcome.append(
-            run_sweep(scene, args.out, scheduler=scheduler, workers=args.workers, progress=progress)))
+            run_sweep(scene, args.out, scheduler=scheduler, workers=args.workers, progress=progress,
+                      confirmed=args.yes)))
     except KeyboardInterrupt:
-        print(f"suslov: interrupted: finished chunks are kept in {chunk_dir(Path(args.out))}; "
-              "run the same command again to resume", file=sys.stderr)
+        print(f"suslov: interrupted: {_kept(chunk_dir(Path(args.out)))}", file=sys.stderr)
         return 130
     if status == 0 and progress:
         progress(f"sweep of {len(scene.sweep)} points done in {outcome[0][2]:.1f} s; wrote {args.out}")
     return status
+
+
+def _kept(chunks: Path) -> str:
+    """One line saying what an interrupted sweep kept (the resumable chunks, or nothing)."""
+    kept = len(list(chunks.glob("*.json"))) if chunks.is_dir() else 0
+    if kept == 0:
+        return "no chunk had finished; nothing was kept"
+    return f"{kept} finished chunk{'s' if kept > 1 else ''} kept in {chunks}; run the same command again to resume"
 
 
 if __name__ == "__main__":

@@ -24,6 +24,7 @@ import json
 import math
 import os
 import pickle
+import signal
 import socket
 import threading
 import time
@@ -32,7 +33,10 @@ from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from multiprocessing import get_context
 from pathlib import Path
 
+from .outdir import make_dir, remove_stale
+
 CONNECT_TIMEOUT = 10.0
+TMP_PREFIX = ".suslov-tmp"   # in-flight files: TMP_PREFIX-PID-KEY; those of dead processes are removed
 SCHEDULER_ENV = "SUSLOV_SCHEDULER"
 
 
@@ -53,6 +57,7 @@ class ChunkStore:
         if codec not in ("json", "pkl"):
             raise ValueError(f"codec={codec!r}: must be 'json' or 'pkl'")
         self.directory, self.codec = Path(directory), codec
+        self._swept = False
 
     def _path(self, key: str) -> Path:
         return self.directory / f"{key}.{self.codec}"
@@ -74,8 +79,11 @@ class ChunkStore:
 
     def put(self, key: str, value) -> None:
         payload = self._dumps(value)
-        self.directory.mkdir(parents=True, exist_ok=True)
-        tmp = self.directory / f".{key}.{os.getpid()}.tmp"
+        make_dir(self.directory)
+        if not self._swept:   # once per store: leftovers of killed runs
+            remove_stale(self.directory, TMP_PREFIX)
+            self._swept = True
+        tmp = self.directory / f"{TMP_PREFIX}-{os.getpid()}-{key}"
         tmp.write_bytes(f"{key} {hashlib.sha256(payload).hexdigest()}\n".encode() + payload)
         tmp.replace(self._path(key))
 
@@ -170,8 +178,23 @@ def _local_pool(workers: int) -> ProcessPoolExecutor:
     """
     pool = _POOLS.get(workers)
     if pool is None:
-        pool = _POOLS[workers] = ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn"))
+        pool = _POOLS[workers] = ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn"),
+                                                     initializer=_worker_init, initargs=(os.getpid(),))
     return pool
+
+
+def _worker_init(parent: int) -> None:
+    """In each worker: Ctrl-C is the parent's to handle (no traceback per worker), and the worker ends
+    itself within half a second once its parent is gone (``kill -9`` of a build or a sweep leaves no
+    orphans computing, and with them the resource tracker, whose pipe they hold, ends too)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    def watch():
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="parent-watch", daemon=True).start()
 
 
 @atexit.register
@@ -181,16 +204,29 @@ def shutdown_pools() -> None:
         _POOLS.popitem()[1].shutdown(wait=True, cancel_futures=True)
 
 
+# chunks submitted ahead: enough that the caller's ``meanwhile`` work (the build's serial checks) never
+# leaves the workers idle, bounded so that the queue never holds a whole large sweep
+IN_FLIGHT = 64
+
+
 def _run_local(work, chunks, pending, workers, finish, meanwhile):
     pool = _local_pool(workers)
     try:
-        futures = {pool.submit(work, chunks[i]): i for i in pending}
+        queue, futures = iter(pending), {}
+
+        def submit_more():
+            for i in queue:
+                futures[pool.submit(work, chunks[i])] = i
+                if len(futures) >= max(IN_FLIGHT, 4 * workers):
+                    return
+
+        submit_more()
         meanwhile()
-        remaining = set(futures)
-        while remaining:
-            done, remaining = wait(remaining, return_when=FIRST_COMPLETED)
+        while futures:
+            done, _ = wait(set(futures), return_when=FIRST_COMPLETED)
             for future in sorted(done, key=futures.get):
-                finish(futures[future], future.result())
+                finish(futures.pop(future), future.result())
+            submit_more()
     except BaseException:
         # an interrupted or failed run leaves no worker behind and no pool in an unknown state
         _POOLS.pop(workers, None)

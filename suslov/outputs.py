@@ -1,39 +1,31 @@
-"""Output directories written atomically (DESIGN.md, "Scenes"): all of a run's files or none.
+"""The simulator's output directories (DESIGN.md, "Scenes"): all of a run's files or none.
 
-Files go into a staging directory beside ``--out`` and are moved into place only when everything
-succeeded; a failed or interrupted run leaves the output directory as it was.  A directory that
-is neither empty nor a previous suslov output (no ``report.md``) is never overwritten.
+Files go into a staging directory beside ``--out`` and are exchanged into place only when
+everything succeeded (:mod:`suslov.outdir`: crash-safe at every instant, stale staging of dead
+runs removed, the user's umask kept); a failed or interrupted run leaves the output directory as
+it was.  A path that is a file, a directory of someone else's (neither empty, nor marked as a
+simulator output, nor a pre-marker output with ``report.md``) or an unwritable place is refused
+before any work.
 """
 from __future__ import annotations
 
-import shutil
-import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
+from . import outdir
+
 REPORT = "report.md"
+TOOL = "suslov"
 
 
 def check_out(out) -> Path:
-    """``out`` as a Path; FileExistsError if it is a file or a foreign non-empty directory."""
-    out = Path(out)
-    if out.exists() and (not out.is_dir() or (any(out.iterdir()) and not (out / REPORT).exists())):
-        raise FileExistsError(f"{out}: exists and is not an empty directory or a previous suslov output "
-                              f"(no {REPORT}); refusing to overwrite")
-    return out
+    """``out`` as an absolute Path; :class:`suslov.outdir.OutputRefused` (a ``ValueError``) if the
+    simulator may not replace it."""
+    return outdir.claim(out, TOOL, REPORT)
 
 
 @contextmanager
 def staged(out):
     """Yield a staging directory; on success it replaces ``out``, on any exception it is removed."""
-    out = check_out(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
-    try:
+    with outdir.staged(out, TOOL, REPORT) as staging:
         yield staging
-        if out.exists():
-            shutil.rmtree(out)
-        staging.rename(out)
-    except BaseException:
-        shutil.rmtree(staging, ignore_errors=True)
-        raise

@@ -140,6 +140,10 @@ def read_bodies_csv(path: Path, scene_path) -> tuple[tuple, np.ndarray]:
             header = [h.strip() for h in next(reader)]
         except StopIteration:
             raise _error(path, "header", "the file is empty (need columns I11, I22, I33, I12, I13, I23)") from None
+        duplicated = sorted({c for c in header if header.count(c) > 1})
+        if duplicated:
+            raise _error(path, "header", f"column {duplicated[0]!r} appears {header.count(duplicated[0])} times; "
+                         "each column must appear once")
         missing = [c for c in TENSOR_FIELDS if c not in header]
         if missing:
             raise _error(path, "header", f"missing column {missing[0]!r} (need {', '.join(TENSOR_FIELDS)}; "

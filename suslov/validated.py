@@ -15,9 +15,10 @@ from __future__ import annotations
 from flint import arb, ctx
 
 from generated import suslov_formulas as gf
-from suslov.kernel.enclosure import AngleEnclosure, ss_angle_enclosure, to_arb
+from suslov.kernel.enclosure import DIGITS_RANGE, MAX_SECONDS, AngleEnclosure, EnclosureTooCostly, ss_angle_enclosure, to_arb
+from suslov.kernel.validate import PREC_RANGE, precision
 
-__all__ = ["AngleEnclosure", "omega_coefficients", "scattering_angle_enclosure"]
+__all__ = ["AngleEnclosure", "EnclosureTooCostly", "omega_coefficients", "scattering_angle_enclosure"]
 
 
 class _Probe:
@@ -52,21 +53,30 @@ def omega_coefficients(I11, I22, I13, I23, branch: int = 1) -> tuple:
     return tuple(u), tuple(v)
 
 
-def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, digits: float = 30,
-                               prec: int | None = None) -> AngleEnclosure:
+def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, digits: int = 30,
+                               prec: int | None = None, max_seconds: float | None = MAX_SECONDS,
+                               progress=None) -> AngleEnclosure:
     """Rigorous enclosure of the scattering angle of any body (I12 = 0 frame, a = e3, I11, I22 > 0).
 
     Entries are ints, Fractions, decimal strings (exact) or floats (their binary value).  For
     I13 = 0 the result contains the closed form of Theorem 5.2 (``scattering_angle``).
+    ``digits``: an integer in [1, 300]; ``prec`` (bits, default 3.33 digits + 40) in [16, 100000].
+    The cost grows with digits and with ``|omega|`` (like p^2 as I23 -> 0 when I13 = 0): beyond
+    ``max_seconds`` (default 120 s; None for no limit) it stops with
+    :class:`suslov.kernel.enclosure.EnclosureTooCostly` saying how far it got and the estimated total;
+    ``progress(fraction, seconds, estimated_total_or_None)`` is called at most once a second.
 
     >>> e = scattering_angle_enclosure("5/4", 1, "0.3", "-0.5", digits=12)
     >>> e.width < 1e-11, e.angle.contains(e.angle.mid())
     (True, True)
     """
+    digits = precision("digits", digits, DIGITS_RANGE)
+    if prec is not None:
+        prec = precision("prec", prec, PREC_RANGE, "bits")
     saved = ctx.prec
     ctx.prec = int(prec if prec is not None else 3.33 * digits + 40)
     try:
         u, v = omega_coefficients(I11, I22, I13, I23, branch)
     finally:
         ctx.prec = saved
-    return ss_angle_enclosure(u, v, digits=digits, prec=prec)
+    return ss_angle_enclosure(u, v, digits=digits, prec=prec, max_seconds=max_seconds, progress=progress)

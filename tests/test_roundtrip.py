@@ -34,6 +34,13 @@ MUTATIONS = [
      "return mpmath.mpf((int(man), int(exp)))"),
     ("meromorphy", 'case, p2 = "I23=0", float(_p_squared_i23_zero(FLOAT, I11, I22, I13))',
      'case, p2 = "I23=0", float(_p_squared_i13_zero(FLOAT, I11, I22, I13))'),
+    # issue 27, finding 9: the careful phase beyond the double-double range (|p t/d| >= 5.3e7)
+    ("gamma_basis", "cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))",
+     "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))"),
+    ("gamma_basis", "with mpmath.workdps(30 + int(math.log10(size + 1))):", "with mpmath.workdps(15):"),
+    # finding 10: the fifth exponent, and the odd-p test of meromorphy
+    ("kovalevskaya_exponents", "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]"),
+    ("meromorphy", "round(p) % 2 == 1", "round(p) % 2 == 0"),
 ]
 
 

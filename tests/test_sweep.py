@@ -205,6 +205,8 @@ def test_csv_bodies_refuse_bad_rows_not_the_sweep(tmp_path):
     ("I11,I22,I33,I12,I13,I23\n2,1,1.5,0,0.2,-0.3\n2,1,x,0,0.2,-0.3\n", "row 2, column I33"),
     ("I11,I22,I33,I12,I13,I23\n2,1,1.5,0,nan,-0.3\n", "row 1, column I13"),
     ("I11,I22,I33,I12,I13,I23\n", "no data rows"),
+    ("I11,I22,I33,I12,I13,I23,I13\n2,1,1.5,0,0.2,-0.3,0.5\n", "column 'I13' appears 2 times"),
+    ("I11,I22,I33,I12,I13,I23,mass\n2,1,1.5,0,0.2,-0.3,1\n", "unknown column 'mass'"),
 ])
 def test_malformed_csv_is_rejected_naming_row_or_column(tmp_path, csv_text, where):
     (tmp_path / "bodies.csv").write_text(csv_text)

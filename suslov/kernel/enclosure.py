@@ -50,12 +50,13 @@ disc, Grönwall and Cauchy's estimate); F. Johansson, arXiv:1606.06977 for ball 
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 from fractions import Fraction
 
 from flint import acb, arb, arb_mat, arb_series, ctx
 
-__all__ = ["AngleEnclosure", "to_arb", "ss_angle_enclosure"]
+__all__ = ["AngleEnclosure", "EnclosureTooCostly", "DIGITS_RANGE", "MAX_SECONDS", "to_arb", "ss_angle_enclosure"]
 
 _UNIT = arb(0, 1)  # the ball [-1, 1]: x + _UNIT * r widens x by r (r an exact upper bound) without rounding
 RHO = 1.0          # half-width of the square on which tanh, sech are bounded (corners at sqrt 2 < pi/2)
@@ -123,6 +124,30 @@ def _disc_bound(c: arb, u, v) -> arb:
     return arb((2 * (w[0] ** 2 + w[1] ** 2)).sqrt().abs_upper())
 
 
+class _Clock:
+    """Elapsed time against ``max_seconds``, with progress reports (see :func:`ss_angle_enclosure`)."""
+
+    def __init__(self, max_seconds, progress, length: float):
+        if max_seconds is not None and not (isinstance(max_seconds, (int, float)) and max_seconds > 0):
+            raise ValueError(f"max_seconds={max_seconds!r}: must be a positive number of seconds (or None)")
+        self.max_seconds, self.progress, self.length = max_seconds, progress, length
+        self.start = self.last = time.perf_counter()
+
+    def check(self, done: float) -> None:
+        now = time.perf_counter()
+        elapsed, fraction = now - self.start, done / self.length
+        total = elapsed / fraction if fraction > 0.02 else None   # no estimate before 2% of the window
+        if self.progress is not None and now - self.last >= 1.0:
+            self.last = now
+            self.progress(fraction, elapsed, total)
+        if self.max_seconds is not None and elapsed > self.max_seconds:
+            estimate = f"; estimated total {total:.0f} s" if total else ""
+            raise EnclosureTooCostly(
+                f"enclosure stopped after {elapsed:.0f} s (max_seconds={self.max_seconds:g}) at {100 * fraction:.0f}% "
+                f"of the integration window{estimate}: |omega| is large for this body (step sizes shrink like "
+                "1/|omega|) or digits is high; raise max_seconds or lower digits")
+
+
 def _tanh_sech_series(c: arb, length: int) -> tuple:
     """Taylor series of tanh and sech at c (overflow-free form for either sign of c)."""
     sign = 1 if c >= 0 else -1
@@ -158,7 +183,7 @@ def _step(y, c: arb, h: arb, u, v, order: int) -> list:
     return values
 
 
-def _limit_series(u, v, n, side: int, x: arb, budget: arb) -> tuple:
+def _limit_series(u, v, n, side: int, x: arb, budget: arb, clock=None, done: float = 0.0) -> tuple:
     """The exponent-0 solution at s = side * oo, evaluated at ``x = e^(-|s|)``: (balls, remainder bound).
 
     side = -1: gamma with gamma(-oo) = -n; side = +1: g with g(+oo) = n (module docstring, 1 and 3).
@@ -184,6 +209,8 @@ def _limit_series(u, v, n, side: int, x: arb, budget: arb) -> tuple:
     bound_sum, b, k = arb(1), arb(1), 0
     while True:
         k += 1
+        if clock is not None:
+            clock.check(done)
         rhs = [arb(0)] * 3
         for j in range(1, k + 1):
             term = cross(coefficients[k - j], w(j))
@@ -215,17 +242,33 @@ def _angle_from_cosine(cos_angle: arb) -> arb:
     return angle.intersection(arb.pi() / 2 + arb(0, 1) * arb.pi() / 2)
 
 
+class EnclosureTooCostly(RuntimeError):
+    """The enclosure would take longer than its ``max_seconds`` (the message says how far it got)."""
+
+
+DIGITS_RANGE = (1, 300)   # 300 digits: about 1 minute for an ordinary body on one core (bench_enclosure)
+MAX_SECONDS = 120.0       # default time limit of the run-time entry points
+
+
 def ss_angle_enclosure(u, v, digits: float = 30, prec: int | None = None, step: float = 0.25,
-                       series_start: float = 1.5) -> AngleEnclosure:
+                       series_start: float = 1.5, max_seconds: float | None = None,
+                       progress=None) -> AngleEnclosure:
     """Enclosure of the ss scattering angle for omega(s) = u tanh s + v sech s (u, v pairs of balls).
 
     ``digits``: the absolute error aimed at, 10**-digits (sets the window, the order and, unless
-    given, the precision).  The returned ball is rigorous whatever the settings; a too low ``prec``
-    only makes it wider, and so do u, v computed at a lower precision than ``prec`` (they are balls:
-    their radii propagate).
+    given, the precision); at most ``DIGITS_RANGE[1]``.  The returned ball is rigorous whatever the
+    settings; a too low ``prec`` only makes it wider, and so do u, v computed at a lower precision
+    than ``prec`` (they are balls: their radii propagate).
+
+    The cost grows with ``|omega|`` (the step shrinks where omega turns fast: like p^2 as I23 -> 0 for
+    I13 = 0) and with digits.  ``max_seconds``: stop with :class:`EnclosureTooCostly` once the
+    integration has run that long, saying how far it got and the estimated total (extrapolated from
+    the fraction of the window done); ``progress(fraction, seconds, estimated_total)`` is called at
+    most once a second.
     """
-    if not 0 < digits <= 1000:
-        raise ValueError(f"digits={digits!r}: must be in (0, 1000]")
+    if isinstance(digits, bool) or not isinstance(digits, (int, float)) or not (
+            DIGITS_RANGE[0] <= digits <= DIGITS_RANGE[1]):
+        raise ValueError(f"digits={digits!r}: must be a number of digits in [{DIGITS_RANGE[0]}, {DIGITS_RANGE[1]}]")
     if not 0.5 <= series_start <= 3:
         raise ValueError(f"series_start={series_start!r}: must be in [0.5, 3] (the series converge for |x| < 1)")
     if not 0 < step <= 0.5:
@@ -245,7 +288,8 @@ def ss_angle_enclosure(u, v, digits: float = 30, prec: int | None = None, step: 
             raise ValueError(f"series_start={series_start!r}: must be a binary fraction (0.5, 1.5, 2.25, ...)")
         order = math.ceil(1.5 * digits) + 10
         ctx.cap = order + 2                            # arb_series truncates at ctx.cap terms
-        y, tail_minus = _limit_series(u, v, n, -1, (-S).exp(), target / 3)
+        clock = _Clock(max_seconds, progress, 2 * float(S))
+        y, tail_minus = _limit_series(u, v, n, -1, (-S).exp(), target / 3, clock)
         delta = _norm_upper([arb(0, b.rad()) for b in y]) + tail_minus
         at_start = tuple(b + _UNIT * tail_minus for b in y)
         y = [b.mid() for b in y]
@@ -253,6 +297,7 @@ def ss_angle_enclosure(u, v, digits: float = 30, prec: int | None = None, step: 
         step_error = arb(0)
         c, steps = -S, 0
         while c < S:
+            clock.check(float(c + S))
             # h = step / 2^m keeps every c an exact dyadic number: c lands on s = 0 (gamma(0) reported)
             # and on S exactly
             h = arb(step)
@@ -274,7 +319,7 @@ def ss_angle_enclosure(u, v, digits: float = 30, prec: int | None = None, step: 
             if c == 0:
                 at_zero = tuple(arb(x) + _UNIT * (delta + step_error).abs_upper() for x in y)
         delta += step_error
-        g, tail_plus = _limit_series(u, v, n, +1, (-S).exp(), target / 3)
+        g, tail_plus = _limit_series(u, v, n, +1, (-S).exp(), target / 3, clock, 2 * float(S))
         g = [b + _UNIT * tail_plus for b in g]
         along = sum((y[k] * g[k] for k in range(3)), arb(0))
         along = along + _UNIT * (delta * (1 + tail_plus)).abs_upper()    # |<e, g>| <= |e| |g|

@@ -33,14 +33,24 @@ def canonical_frame(I) -> tuple[np.ndarray, tuple[float, float, float, float]]:
     (0.0, True)
     """
     try:
-        M = np.array(I, dtype=float)
-    except (TypeError, ValueError):
+        raw = np.asarray(I)
+        if np.iscomplexobj(raw):
+            raise ValueError(f"I: complex entries are not accepted (dtype {raw.dtype}); an inertia tensor is real")
+        M = np.array(raw, dtype=float)
+    except (TypeError, ValueError) as error:
+        if "complex" in str(error):
+            raise
         raise ValueError(f"I={I!r}: must be a 3x3 array of real numbers") from None
     if M.shape != (3, 3):
         raise ValueError(f"I has shape {M.shape}: must be 3x3")
     if not np.all(np.isfinite(M)):
         raise ValueError("I contains NaN or inf")
     scale = np.max(np.abs(M))
+    if scale == 0:
+        raise ValueError("I is zero: not positive definite")
+    # every answer is scale-invariant (det I = 1 below): scaled to entries of order 1 first, so that
+    # 1e-300 * I or 1e103 * I neither underflows nor overflows in det, eigvalsh or the tests below
+    M, scale = M / scale, 1.0
     if np.max(np.abs(M - M.T)) > 1e-12 * scale:
         raise ValueError(f"I is not symmetric (max |I - I^T| = {np.max(np.abs(M - M.T)):.3g})")
     M = (M + M.T) / 2

@@ -14,7 +14,11 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 
-__all__ = ["real_scalar", "real_array", "odd_p", "mp_real", "rational"]
+__all__ = ["real_scalar", "real_array", "odd_p", "mp_real", "rational", "precision", "DPS_RANGE", "PREC_RANGE"]
+
+# documented limits of the precision arguments (digits for the mpmath twins, bits for the balls)
+DPS_RANGE = (1, 10_000)
+PREC_RANGE = (16, 100_000)
 
 
 def _where(array: np.ndarray, bad: np.ndarray) -> tuple:
@@ -29,8 +33,17 @@ def real_array(name: str, value, *, positive: bool = False, nonzero: bool = Fals
     """
     if isinstance(value, (str, bytes, bool, np.bool_)):
         raise ValueError(f"{name}={value!r}: must be a real number or an array of real numbers")
+    raw = value if isinstance(value, np.ndarray) else None
+    if raw is None:
+        try:
+            raw = np.asarray(value)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name}={value!r}: must be a real number or an array of real numbers") from None
+    if np.iscomplexobj(raw):   # NumPy would drop the imaginary part with only a ComplexWarning
+        raise ValueError(f"{name}: complex values are not accepted (dtype {raw.dtype}); pass the real part "
+                         "explicitly if that is what is meant")
     try:
-        array = np.asarray(value, dtype=float)
+        array = np.asarray(raw, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"{name}={value!r}: must be a real number or an array of real numbers") from None
     if array.size > 64 and np.isfinite(np.add.reduce(array, axis=None)) and not (positive or nonzero):
@@ -50,6 +63,26 @@ def real_scalar(name: str, value, *, positive: bool = False, nonzero: bool = Fal
     if isinstance(value, bool) or not isinstance(value, (numbers.Real, mpmath.mpf)):
         raise ValueError(f"{name}={value!r}: must be a real number")
     return float(real_array(name, float(value), positive=positive, nonzero=nonzero))
+
+
+def precision(name: str, value, limits: tuple[int, int] = DPS_RANGE, unit: str = "digits") -> int:
+    """A precision argument (``dps``, ``prec``, ``digits``) as an int within ``limits``, else ValueError.
+
+    A zero, negative, fractional, NaN or string precision used to give confident wrong answers
+    (``dps=0`` rounded the angle to 3.0); it is refused naming the argument and the range.
+
+    >>> precision("dps", 30)
+    30
+    >>> precision("dps", 0)
+    Traceback (most recent call last):
+    ...
+    ValueError: dps=0: must be an integer number of digits in [1, 10000]
+    """
+    low, high = limits
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Integral, np.integer)) \
+            or not low <= int(value) <= high:
+        raise ValueError(f"{name}={value!r}: must be an integer number of {unit} in [{low}, {high}]")
+    return int(value)
 
 
 def mp_real(name: str, value, *, positive: bool = False, nonzero: bool = False):

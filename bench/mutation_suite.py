@@ -1,0 +1,185 @@
+"""Mutation suite: seeded single-point faults, each expected to be rejected by the build, ``--verify`` or a test.
+
+Issue 27 ("bugs the certificates and tests let through"): a certified pipeline must fail loudly when
+its code is wrong.  Each mutant below changes one place in ``derivations/``, ``suslov/kernel``,
+``suslov/recipes``, the template or the emitted module (a flipped sign, an index or exponent off by
+one, a swapped pair, a weakened bound, a dropped element) and names the detector that must reject
+it:
+
+* ``build``: ``build_formulas.py --no-cache --out DIR`` exits non-zero (a certificate or the round
+  trip of the emitted module fails);
+* ``verify``: ``build_formulas.py --verify generated`` exits 1 (the committed module, mutated);
+* ``test:NODE``: ``pytest NODE`` fails.
+
+Each mutant runs in a fresh copy of the working tree (tracked and untracked, not ignored files),
+with ``PYTHONPATH`` pointing at the copy and the certificate cache off.  A mutant the detector does
+not reject is *silent*; the table says so.  Equivalent mutants (no observable change) are listed in
+``EQUIVALENT`` with the reason and not run.
+
+    python bench/mutation_suite.py                # all mutants, table in bench/results/mutations.md
+    python bench/mutation_suite.py --only phase   # mutants whose id contains "phase"
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from machine_info import cpu_name  # noqa: E402
+from results_io import write_results  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+T = "templates/suslov_formulas.py.j2"
+G = "generated/suslov_formulas.py"
+
+# (id, file, original text (unique in the file), mutated text, detector)
+MUTANTS = [
+    # derivations: the certification core and the paper's sections (the build must fail)
+    ("exact-zero-test-always-zero", "derivations/exact.py", "    return form.is_zero\n", "    return True\n", "build"),
+    ("residue-drop-first-obstruction", "derivations/residue.py",
+     "for k, name, value in obstructions if value != 0]", "for k, name, value in obstructions[1:] if value != 0]",
+     "test:tests/test_independent_tables.py"),
+    ("laurent-csch-sign", "derivations/residue.py", "csch = [-2 * (sp.Integer(2) ** (2 * k - 1) - 1)",
+     "csch = [2 * (sp.Integer(2) ** (2 * k - 1) - 1)", "build"),
+    # suslov/recipes: written once, run exactly by the build (the build must fail)
+    ("recipe-integrals-K-power", T, '"P2": core.K**2 * core.Den', '"P2": core.K * core.Den', "build"),
+    # suslov/kernel: run-time numerics (the round trip, in the build and in --verify)
+    ("phase-cody-waite-constant", "suslov/kernel/phase.py", "_C1, _C2, _C3 = 6.283185303211212, 3.9683743166540886e-09",
+     "_C1, _C2, _C3 = 6.283185303211212, 3.9683743166540886e-08", "verify"),
+    ("phase-half-angle-sign", "suslov/kernel/phase.py", "np.subtract(1.0, u2, out=u2)", "np.subtract(u2, 1.0, out=u2)",
+     "verify"),
+    ("horner-reversed-branch", "suslov/kernel/horner.py", "c = np.where(first, c, c[::-1])",
+     "c = np.where(first, c[::-1], c)", "verify"),
+    ("trig-series-sin-rows", "suslov/kernel/trig_series.py", "real[p + 1:, :m] = powers[:, :m].imag",
+     "real[p + 1:, :m] = -powers[:, :m].imag", "verify"),
+    ("frames-no-scaling", "suslov/kernel/frames.py", "M, scale = M / scale, 1.0", "scale = scale",
+     "test:tests/test_bad_input.py"),
+    ("validate-dps-lower-limit", "suslov/kernel/validate.py", "DPS_RANGE = (1, 10_000)", "DPS_RANGE = (-10, 10_000)",
+     "test:tests/test_bad_input.py"),
+    ("enclosure-truncation-exponent", "suslov/kernel/enclosure.py", "ratio ** (order + 1)", "ratio ** (order + 3)",
+     "test:tests/test_independent_tables.py"),
+    ("enclosure-limit-series-ratio", "suslov/kernel/enclosure.py", "q = max(arb(1), (k + 1 + W) / (k + 2))",
+     "q = max(arb(1) / 2, (k + 1 + W) / (k + 2))", "test:tests/test_enclosure.py"),
+    ("enclosure-no-step-error", "suslov/kernel/enclosure.py",
+     "step_error += _norm_upper([arb(0, b.rad()) for b in balls]) + truncation",
+     "step_error += _norm_upper([arb(0, b.rad()) for b in balls])", "test:tests/test_enclosure.py"),
+    # the template (the build's round trip must reject the module it emits)
+    ("template-careful-phase-swap", T,
+     "cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))",
+     "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))", "build"),
+    ("template-careful-phase-digits", T, "with mpmath.workdps(30 + int(math.log10(size + 1))):",
+     "with mpmath.workdps(15):", "build"),
+    ("template-kovalevskaya-fifth", T, "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]", "build"),
+    ("template-meromorphy-odd", T, "round(p) % 2 == 1", "round(p) % 2 == 0", "build"),
+    ("template-basis-sigma", T, "sign = -_BASIS_SIGMA[p]", "sign = _BASIS_SIGMA[p]", "build"),
+    ("template-special-case-turn", T, "if I23 > 0:", "if I23 < 0:", "build"),
+    ("template-dps-unchecked", T, '    dps = precision("dps", dps)\n    with mpmath.workdps(dps + 10):\n        p, d = mp_real',
+     '    with mpmath.workdps(dps + 10):\n        p, d = mp_real', "test:tests/test_bad_input.py"),
+    # the emitted module itself (--verify of the committed tree)
+    ("emitted-omega-sign", G, "k1 = -c*p/d", "k1 = c*p/d", "verify"),
+    ("emitted-lambda-squared", G, "return (I11*I22*(I11 - I22)*", "return (I11*I22*(I11 + I22)*", "verify"),
+    ("emitted-scattering-sech", G, "c*ctx.sech(x))", "c*ctx.sech(2*x))", "verify"),
+    ("emitted-kovalevskaya-fifth", G, "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]", "verify"),
+    ("emitted-meromorphy-odd", G, "round(p) % 2 == 1", "round(p) % 2 == 0", "verify"),
+    ("emitted-careful-phase-swap", G,
+     "cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))",
+     "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))", "verify"),
+    # the output directories (the data-loss findings)
+    ("outdir-no-ownership-check", "suslov/outdir.py", "if any(path.iterdir()) and not _owned(path, tool, signature):",
+     "if False:", "test:tests/test_outdir.py"),
+    ("outdir-journal-no-recovery", "suslov/outdir.py", "            if staging.is_dir():\n                os.rename(staging, target)",
+     "            if False:\n                os.rename(staging, target)", "test:tests/test_outdir.py"),
+    ("executor-no-parent-watch", "suslov/executor.py", "threading.Thread(target=watch, name=\"parent-watch\", daemon=True).start()",
+     "pass", "test:tests/test_outdir.py::test_workers_die_with_their_parent"),
+]
+
+# mutants with no observable effect (not run), and why
+EQUIVALENT = [
+    ("lru-eviction-order", "suslov/kernel/lru.py: evicting the newest instead of the oldest entry changes only which "
+     "cached tables are recomputed, never a value"),
+    ("horner-block-size", "suslov/kernel/horner.py: block = 4096 for 8192 changes only the memory per pass"),
+]
+
+
+def working_tree_copy(target: Path) -> None:
+    files = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"], cwd=ROOT,
+                           capture_output=True, text=True, check=True).stdout.split("\0")
+    for name in filter(None, files):
+        source = ROOT / name
+        if source.is_file():
+            (target / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(source, target / name)
+
+
+def detector_command(detector: str, tree: Path) -> list[str]:
+    if detector == "build":
+        return [sys.executable, "build_formulas.py", "--quiet", "--no-cache", "--out", str(tree.parent / "out")]
+    if detector == "verify":
+        return [sys.executable, "build_formulas.py", "--quiet", "--verify", "generated"]
+    if detector.startswith("test:"):
+        return [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", detector[5:]]
+    raise ValueError(f"unknown detector {detector!r}")
+
+
+def run_mutant(mutant) -> dict:
+    ident, path, original, mutated, detector = mutant
+    with tempfile.TemporaryDirectory(prefix=f"mutant-{ident}-") as tmp:
+        tree = Path(tmp) / "tree"
+        working_tree_copy(tree)
+        text = (tree / path).read_text(encoding="utf-8")
+        if text.count(original) != 1:
+            return {"id": ident, "file": path, "detector": detector, "outcome": "site not unique or missing",
+                    "seconds": 0.0}
+        (tree / path).write_text(text.replace(original, mutated), encoding="utf-8")
+        env = dict(os.environ, PYTHONPATH=str(tree), SUSLOV_NO_CACHE="1")
+        start = time.perf_counter()
+        done = subprocess.run(detector_command(detector, tree), cwd=tree, env=env, capture_output=True, text=True,
+                              timeout=1800)
+        seconds = time.perf_counter() - start
+    rejected = done.returncode != 0
+    return {"id": ident, "file": path, "detector": detector, "seconds": round(seconds, 1),
+            "outcome": "rejected" if rejected else "SILENT",
+            "evidence": (done.stderr.strip().splitlines() or done.stdout.strip().splitlines() or [""])[-1][:160]}
+
+
+def table(rows: list, equivalent: list) -> str:
+    silent = [r for r in rows if r["outcome"] != "rejected"]
+    lines = ["# Mutation suite", "", "Seeded single-point faults (`bench/mutation_suite.py`); each must be rejected by "
+             "the named detector.", "", f"Machine: {cpu_name()}, {os.cpu_count()} cores", "",
+             f"**{len(rows) - len(silent)} of {len(rows)} non-equivalent mutants rejected; {len(silent)} silent.**", "",
+             "| mutant | file | detector | outcome | seconds | what rejected it |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        evidence = r.get("evidence", "").replace("|", "\\|")
+        lines.append(f"| {r['id']} | `{r['file']}` | {r['detector']} | {r['outcome']} | {r['seconds']} | {evidence} |")
+    lines += ["", "Equivalent mutants (not run):", ""] + [f"- {name}: {why}" for name, why in equivalent]
+    lines += ["", "Reproduce: `python bench/mutation_suite.py` (about 10 minutes on 2 cores)."]
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", default=None, help="run the mutants whose id contains this text (no table written)")
+    ap.add_argument("--jobs", type=int, default=1, help="mutants run at once (each may use all cores)")
+    args = ap.parse_args(argv)
+    chosen = [m for m in MUTANTS if args.only is None or args.only in m[0]]
+    rows = []
+    with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        for row in pool.map(run_mutant, chosen):
+            rows.append(row)
+            print(f"{row['outcome']:>9}  {row['id']}  ({row['detector']}, {row['seconds']} s)", flush=True)
+    if args.only is None:
+        write_results("mutations", {"machine": cpu_name(), "mutants": rows,
+                                    "equivalent": [{"id": i, "why": w} for i, w in EQUIVALENT]},
+                      table(rows, EQUIVALENT))
+    return 0 if all(r["outcome"] == "rejected" for r in rows) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

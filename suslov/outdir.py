@@ -1,0 +1,267 @@
+"""Output directories that are the program's or refused, replaced crash-safely (DESIGN.md, "Generated outputs").
+
+Used by the build (``build_formulas.py``: ``generated/`` or ``--out DIR``) and by the simulator
+(``suslov simulate`` / sweeps: ``--out DIR``).  No dependency beyond the standard library, so the
+build and the run-time package share it.
+
+Rules
+-----
+* **Ownership.**  A run writes only into a path that does not exist, an empty directory, or a
+  directory carrying the tool's marker file ``.suslov-output`` (a previous output of the same tool;
+  outputs written before the marker existed are recognised by their signature file:
+  ``certificates.json`` for the build, ``report.md`` for the simulator).  Anything else (a file, a
+  user's directory, the current directory of a checkout, a path whose parent cannot be written) is
+  refused with :class:`OutputRefused` *before any work*, naming the path and what is in it.
+* **Replacement at every instant.**  The new tree is written into a staging directory beside the
+  target, then exchanged with the old one in a single ``renameat2(RENAME_EXCHANGE)`` system call
+  (Linux >= 3.15): at any instant, a kill leaves either the complete old or the complete new tree at
+  the path.  Where the exchange is not available (another OS, a file system without it), a journal
+  ``.NAME.suslov-swap`` is written before the two renames; the next run that touches the path
+  finishes the swap (the new tree is complete) or rolls it back (see :func:`recover`).
+* **Stale staging.**  Staging and discarded trees are named ``.NAME.suslov-{new,old}-PID-XXXX``; a run
+  removes those of processes that no longer exist (never another live run's, never a foreign name).
+* **Permissions.**  Directories are created with mode 0o777 and files by ``open``: the user's
+  umask decides (``tempfile.mkdtemp`` would make them owner-only).
+* Concurrent runs serialise their swaps with ``flock`` on the parent directory (no lock file).
+"""
+from __future__ import annotations
+
+import ctypes
+import errno
+import fcntl
+import json
+import os
+import secrets
+import shutil
+from contextlib import contextmanager
+from pathlib import Path
+
+MARKER = ".suslov-output"
+_KINDS = ("new", "old")
+_RENAME_EXCHANGE = 2
+_AT_FDCWD = -100
+
+__all__ = ["MARKER", "OutputRefused", "claim", "recover", "new_staging", "swap_in", "staged", "remove_stale",
+           "make_dir"]
+
+
+class OutputRefused(ValueError):
+    """The output path is not the program's to replace (a file, a foreign directory, unwritable)."""
+
+
+def _describe(path: Path, limit: int = 5) -> str:
+    names = sorted(p.name + ("/" if p.is_dir() else "") for p in path.iterdir())
+    shown = ", ".join(names[:limit]) + (f", ... ({len(names)} entries)" if len(names) > limit else "")
+    return shown
+
+
+def _owned(path: Path, tool: str, signature: str | None) -> bool:
+    try:
+        return json.loads((path / MARKER).read_text(encoding="utf-8")).get("tool") == tool
+    except (OSError, ValueError, AttributeError):
+        return signature is not None and (path / signature).is_file()
+
+
+def claim(target, tool: str, signature: str | None = None) -> Path:
+    """The absolute output path, after checking that ``tool`` may replace it.
+
+    Raises :class:`OutputRefused` naming the path and its contents when it is a file, a non-empty
+    directory without ``tool``'s marker (or the legacy ``signature`` file), a directory that contains
+    the current working directory, or a path whose parent cannot be created or written.
+
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp()); (d / "thesis.txt").write_text("mine")
+    4
+    >>> claim(d, "demo")
+    Traceback (most recent call last):
+    ...
+    suslov.outdir.OutputRefused: ...: a directory with other content (thesis.txt), not a previous demo output; refusing to replace it
+    """
+    path = Path(os.path.abspath(Path(target).expanduser()))
+    if path.exists() or path.is_symlink():
+        if path.is_symlink() or not path.is_dir():
+            raise OutputRefused(f"{target}: exists and is not a directory; refusing to replace it")
+        if Path.cwd() == path or path in Path.cwd().parents:
+            raise OutputRefused(f"{target}: is (or contains) the current directory; choose a new or empty "
+                                "directory for the output")
+        if any(path.iterdir()) and not _owned(path, tool, signature):
+            raise OutputRefused(f"{target}: a directory with other content ({_describe(path)}), not a previous "
+                                f"{tool} output; refusing to replace it")
+    parent = path.parent
+    while not parent.exists() and not parent.is_symlink():
+        parent = parent.parent
+    if not parent.is_dir():
+        raise OutputRefused(f"{target}: {parent} is not a directory")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputRefused(f"{target}: cannot write in {parent} (read-only or not permitted)")
+    return path
+
+
+def make_dir(path: Path) -> Path:
+    """``mkdir -p`` with mode 0o777 (the umask decides), returning ``path``."""
+    os.makedirs(path, mode=0o777, exist_ok=True)
+    return path
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def remove_stale(directory: Path, prefix: str) -> list[Path]:
+    """Remove ``directory/PREFIX-PID-*`` entries whose process no longer exists; returns them.
+
+    Only names of exactly that form are touched; entries of live processes are left alone.
+    """
+    removed = []
+    try:
+        entries = list(Path(directory).iterdir())
+    except OSError:
+        return removed
+    for entry in entries:
+        rest = entry.name[len(prefix):] if entry.name.startswith(prefix + "-") else None
+        if rest is None:
+            continue
+        pid = rest[1:].split("-", 1)[0].split(".", 1)[0]
+        if not pid.isdigit() or _pid_alive(int(pid)):
+            continue
+        if entry.is_dir() and not entry.is_symlink():
+            shutil.rmtree(entry, ignore_errors=True)
+        else:
+            entry.unlink(missing_ok=True)
+        removed.append(entry)
+    return removed
+
+
+def _name(target: Path, kind: str) -> Path:
+    return target.parent / f".{target.name}.suslov-{kind}-{os.getpid()}-{secrets.token_hex(4)}"
+
+
+def _journal(target: Path) -> Path:
+    return target.parent / f".{target.name}.suslov-swap"
+
+
+@contextmanager
+def _locked(target: Path):
+    make_dir(target.parent)
+    fd = os.open(target.parent, os.O_RDONLY)   # the parent directory itself: no lock file left behind
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)
+
+
+def recover(target) -> str | None:
+    """Finish or roll back an interrupted swap of ``target`` and remove stale staging trees.
+
+    Returns what was done ("finished", "rolled back", None).  Safe to call at any time; called by
+    :func:`new_staging` and :func:`swap_in`.
+    """
+    target = Path(os.path.abspath(target))
+    if not target.parent.exists():
+        return None
+    with _locked(target):
+        return _recover_locked(target)
+
+
+def _recover_locked(target: Path) -> str | None:
+    done = None
+    journal = _journal(target)
+    try:
+        entry = json.loads(journal.read_text(encoding="utf-8"))
+        staging, backup = target.parent / entry["staging"], target.parent / entry["backup"]
+    except FileNotFoundError:
+        entry = None
+    except (OSError, ValueError, KeyError, TypeError):
+        entry = None   # a journal torn while being written: the swap had not started (written before the renames)
+        journal.unlink(missing_ok=True)
+    if entry is not None:
+        if not target.exists():
+            if staging.is_dir():
+                os.rename(staging, target)
+                done = "finished"
+            elif backup.is_dir():
+                os.rename(backup, target)
+                done = "rolled back"
+        journal.unlink(missing_ok=True)
+    for kind in _KINDS:
+        remove_stale(target.parent, f".{target.name}.suslov-{kind}")
+    return done
+
+
+def new_staging(target, tool: str) -> Path:
+    """A fresh staging directory beside ``target`` (created with the umask's mode) holding ``tool``'s marker."""
+    target = Path(os.path.abspath(target))
+    recover(target)
+    staging = _name(target, "new")
+    os.mkdir(staging, 0o777)
+    (staging / MARKER).write_text(json.dumps({"tool": tool}) + "\n", encoding="utf-8")
+    return staging
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Atomically exchange two paths (Linux renameat2); False where the system cannot."""
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        renameat2 = libc.renameat2
+    except (OSError, AttributeError):
+        return False
+    renameat2.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
+    if renameat2(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE) == 0:
+        return True
+    code = ctypes.get_errno()
+    if code in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP, errno.ENOTSUP):
+        return False
+    raise OSError(code, os.strerror(code), str(b))
+
+
+_EXCHANGE_ENABLED = True   # tests switch it off to exercise the journal route
+
+
+def swap_in(staging: Path, target) -> None:
+    """Put the complete tree ``staging`` at ``target``; the old tree (if any) is removed afterwards."""
+    target = Path(os.path.abspath(target))
+    staging = Path(staging)
+    with _locked(target):
+        _recover_locked(target)
+        if not target.exists():
+            os.rename(staging, target)
+            return
+        if _EXCHANGE_ENABLED and _exchange(staging, target):
+            old = staging   # the old tree now sits at the staging name
+        else:
+            old = _name(target, "old")
+            journal = _journal(target)
+            tmp = _name(target, "new")   # a torn journal of a killed run is stale staging like any other
+            tmp.write_text(json.dumps({"staging": staging.name, "backup": old.name}), encoding="utf-8")
+            os.replace(tmp, journal)
+            os.rename(target, old)
+            os.rename(staging, target)
+            journal.unlink()
+        discard = _name(target, "old") if old == staging else old
+        if old == staging:
+            os.rename(staging, discard)
+        shutil.rmtree(discard, ignore_errors=True)
+
+
+@contextmanager
+def staged(out, tool: str, signature: str | None = None):
+    """Yield a staging directory; on success it replaces ``out``, on any exception it is removed.
+
+    ``out`` is checked with :func:`claim` first, so a refused path fails before any work.
+    """
+    out = claim(out, tool, signature)
+    make_dir(out.parent)
+    staging = new_staging(out, tool)
+    try:
+        yield staging
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    swap_in(staging, out)
