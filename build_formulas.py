@@ -82,6 +82,10 @@ def parser() -> argparse.ArgumentParser:
                     help="run only these derivations (and what they require); writes nothing unless --out is given")
     ap.add_argument("--out", type=Path, default=None,
                     help="output directory (default: generated/ for a full build)")
+    ap.add_argument("--install", action="store_true",
+                    help="write into the per-user store (suslov.loader.store_dir()/pmax-N, where "
+                         "suslov.load_formulas(pmax=N) finds it) instead of generated/: any p range without touching "
+                         "the checkout")
     ap.add_argument("--check", action="store_true",
                     help="rebuild in a temporary directory and fail if the output directory differs")
     ap.add_argument("--verify", type=Path, metavar="DIR", default=None,
@@ -197,6 +201,11 @@ def main(argv: list[str] | None = None) -> int:
         except SchedulerError as exc:
             print(f"build_formulas.py: {exc}; nothing was written", file=sys.stderr)
             return 2
+    if args.install:
+        if args.out is not None or args.only or args.check:
+            ap.error("--install writes the per-user store; it cannot be combined with --out, --only or --check")
+        from suslov.loader import store_dir
+        args.out = store_dir() / f"pmax-{args.pmax}"
     target = args.out if args.out is not None else (None if args.only else GENERATED)
     if target is not None:
         try:   # before any work: a file, someone else's directory or an unwritable place is refused

@@ -352,6 +352,38 @@ def check_meromorphy_cases(log: CertificateLog, module) -> Certificate:
         "; ".join(failures) if failures else f"{points} bodies agree"))
 
 
+def check_input_validation(log: CertificateLog, module) -> Certificate:
+    """Bad input fails loudly (issue 27): every mp twin refuses a precision outside [1, 10000] digits,
+    the ball form one outside [16, 100000] bits, and the float functions refuse complex arrays
+    (NumPy would keep the real part with only a warning); each call must raise ValueError."""
+    calls = []
+    for bad in (0, -5, 2.5, "30", True):
+        calls += [("omega_mp", lambda b=bad: module.omega_mp(0.3, 1, 0.5, dps=b)),
+                  ("omega_general_mp", lambda b=bad: module.omega_general_mp(0.3, 2, 1, 0.3, -0.5, dps=b)),
+                  ("first_integral_mp", lambda b=bad: module.first_integral_mp(1, 0.5, 1, 2, 0.6, 0.8, 0, dps=b)),
+                  ("gamma_basis_mp", lambda b=bad: module.gamma_basis_mp(0.3, 1, 0.5, dps=b)),
+                  ("scattering_angle_mp", lambda b=bad: module.scattering_angle_mp(2.5, 0.7, dps=b)),
+                  ("scattering_angle_ball", lambda b=bad: module.scattering_angle_ball(2, 1, prec=b))]
+    z = np.array([0.5 + 1e-9j])
+    calls += [("omega", lambda: module.omega(z, 3, 0.5)), ("gamma_basis", lambda: module.gamma_basis(z, 1, 0.5)),
+              ("scattering_angle", lambda: module.scattering_angle(z, 0.7)),
+              ("first_integral", lambda: module.first_integral(1, 0.5, z, 1.0, 0.6, 0.8, 0.0)),
+              ("omega_general", lambda: module.omega_general(z, 2, 1, 0.3, -0.5))]
+    accepted = []
+    with stopwatch() as elapsed:
+        for name, call in calls:
+            try:
+                call()
+            except ValueError:
+                continue
+            accepted.append(name)
+    return log.record(Certificate(
+        "input validation: the mp twins refuse precisions outside [1, 10000] digits (the ball form outside "
+        "[16, 100000] bits) and the float functions refuse complex arrays, with ValueError", "round trip",
+        "exhaustive over the listed calls (each must raise)", Outcome.FAIL if accepted else Outcome.PASS, elapsed[0],
+        len(calls), ("accepted: " + ", ".join(sorted(set(accepted)))) if accepted else f"{len(calls)} calls refused"))
+
+
 def check_meromorphy(log: CertificateLog, module) -> Certificate:
     worst, points = 0.0, 0
     with stopwatch() as elapsed:
@@ -374,7 +406,7 @@ def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list
     certs = [check_omega(log, module), check_omega_general(log, module), check_scattering_angle(log, module),
              check_special_case_chain(log, module), check_meromorphy(log, module),
              check_kovalevskaya_exponents(log, module, build.results["kovalevskaya"].exports["matrix"]),
-             check_meromorphy_cases(log, module)]
+             check_meromorphy_cases(log, module), check_input_validation(log, module)]
     for p in module.INTEGRAL_PS:
         if p not in skip:
             certs.append(check_first_integral(log, module, p))

@@ -1,9 +1,11 @@
 """Runtime package: the simulator (scenes, planner, guarded integration, figures) on the generated formulas.
 
-Every public name of ``generated.suslov_formulas`` (its ``__all__``) is available here as
-``suslov.NAME``; the import is lazy (PEP 562), so ``suslov.kernel`` and ``suslov.recipes``,
-which the generated module itself imports, can be loaded without a cycle and before
-``generated/`` exists (the build runs the recipes).
+Every public name of the generated module (its ``__all__``) is available here as ``suslov.NAME``;
+the import is lazy (PEP 562), so ``suslov.kernel`` and ``suslov.recipes``, which the generated
+module itself imports, can be loaded without a cycle and before ``generated/`` exists (the build
+runs the recipes).  Which generated module: :func:`active_formulas` (the checkout's
+``generated/``, the wheel's ``suslov.formulas``, ``$SUSLOV_FORMULAS`` or :func:`use_formulas`);
+a larger p range without touching the checkout: :func:`load_formulas` (``load_formulas(pmax=101)``).
 
 Layers (DESIGN.md, data flow): ``suslov.kernel`` (numerical machinery) and
 ``suslov.recipes`` (constructions written once, run by the build exactly and by the module
@@ -12,13 +14,13 @@ numerically) need neither SymPy nor ``generated``; the simulator modules import
 """
 from __future__ import annotations
 
-import importlib
+from .loader import active_formulas, load_formulas, use_formulas
 
-_FORMULAS = "generated.suslov_formulas"
+_OWN = ["active_formulas", "load_formulas", "use_formulas"]
 
 
 def _public_names() -> list[str]:
-    return list(importlib.import_module(_FORMULAS).__all__)
+    return list(active_formulas().__all__) + _OWN
 
 
 def __getattr__(name: str):
@@ -26,7 +28,7 @@ def __getattr__(name: str):
         return _public_names()
     if name.startswith("__"):
         raise AttributeError(name)
-    module = importlib.import_module(_FORMULAS)
+    module = active_formulas()
     if name in module.__all__:
         return getattr(module, name)
     raise AttributeError(f"module 'suslov' has no attribute {name!r}")

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from generated import suslov_formulas as gf
+from .loader import gf
 
 
 @dataclass(frozen=True)

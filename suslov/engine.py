@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from generated import suslov_formulas as gf
+from .loader import gf
 
 from . import integrate
 from .outputs import REPORT, staged

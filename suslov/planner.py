@@ -25,7 +25,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from generated.suslov_formulas import INTEGRAL_PS
+from .loader import gf
 
 from .body import make_body
 from .scene import FIGURES, Scene
@@ -95,7 +95,7 @@ PROVIDERS = (
              lambda s, b: f"{integrator_name(s)}, three solutions from the identity at t0"),
     Provider("integral_drift", "integrals", ("omega", "gamma"), "a Suslov body", _suslov,
              lambda s, b: "F1 (energy), F2 = |gamma|^2" + (", F3 polynomial (Theorem 6.2)"
-                                                           if _closed_basis(s, b) and b.odd_integer_p in INTEGRAL_PS
+                                                           if _closed_basis(s, b) and b.odd_integer_p in gf.INTEGRAL_PS
                                                            else "")),
     Provider("scattering_angle", "angle_closed_form", (), "I13 = 0 (any real p)", _special,
              lambda s, b: "scattering_angle(p, d) (Theorem 5.2, corrected)"),

@@ -48,7 +48,7 @@ from pathlib import Path
 
 import numpy as np
 
-from generated.suslov_formulas import canonical_frame
+from .loader import gf
 
 from .sweep_spec import parse_sweep
 
@@ -152,7 +152,7 @@ def _body(path, table):
         tensor = np.array([[_number(path, f"body.inertia[{i}][{j}]", rows[i][j]) for j in range(3)]
                            for i in range(3)])
         try:  # the generated module's validation: symmetric, positive definite, a not an eigenvector
-            canonical_frame(tensor)
+            gf.canonical_frame(tensor)
         except ValueError as exc:
             raise SceneError(path, "body.inertia", str(exc)) from None
         return {"kind": "suslov", "inertia": tensor}

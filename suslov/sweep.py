@@ -32,7 +32,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from generated import suslov_formulas as gf
+from .loader import gf
 
 from . import executor
 from .body import make_body

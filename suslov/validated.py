@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from flint import arb, ctx
 
-from generated import suslov_formulas as gf
+from suslov.loader import gf
 from suslov.kernel.enclosure import DIGITS_RANGE, MAX_SECONDS, AngleEnclosure, EnclosureTooCostly, ss_angle_enclosure, to_arb
 from suslov.kernel.validate import PREC_RANGE, precision
 

@@ -20,9 +20,10 @@ The enclosure, in three rigorous pieces:
    ``gamma = sum y_k x^k``, ``y_0 = -n``, ``(k - C(w_0)) y_k = sum_(j=1..k) C(w_j) y_(k-j)`` with
    ``C(w) y = y x w``.  C(w_0) is real skew-symmetric, so ``||(k - C(w_0))^-1|| <= 1/k``, and
    ``||C(w_j)|| <= W = 2 max(|u|, |v|)``: by induction ``||y_k|| <= b_k`` with ``b_0 = 1``,
-   ``b_k = (W/k) (b_0 + ... + b_(k-1))``, i.e. ``b_(k+1) = b_k (k + W)/(k + 1)``: the ratios decrease,
-   so the remainder after order N at x is at most ``sqrt(3) b_(N+1) x^(N+1) / (1 - q x)``,
-   ``q = (N + 1 + W)/(N + 2)`` (when q x < 1).
+   ``b_k = (W/k) (b_0 + ... + b_(k-1))``, i.e. ``b_(k+1) = b_k (k + W)/(k + 1)``: the ratios tend to 1
+   (from above when W > 1, from below when W < 1), so the remainder after order N at x is at most
+   ``sqrt(3) b_(N+1) x^(N+1) / (1 - q x)``, ``q = max(1, (N + 1 + W)/(N + 2))`` (when q x < 1;
+   :func:`_majorant_tail`).
 2. **Taylor steps** from s0 = -S to s1 = +S (step h, centre c).  The Taylor coefficients of tanh and
    sech at c come from ``arb_series`` (exp of a series), those of gamma from Picard iteration on
    series (each pass fixes one more coefficient).  Truncation after order N: on the closed square
@@ -222,12 +223,23 @@ def _limit_series(u, v, n, side: int, x: arb, budget: arb, clock=None, done: flo
         total = [total[i] + coefficients[-1][i] * power for i in range(3)]
         b = W * bound_sum / k                      # b_k, and b_(k+1) = b_k (k + W)/(k + 1)
         bound_sum += b
-        following = b * (k + W) / (k + 1)
-        q = max(arb(1), (k + 1 + W) / (k + 2))    # bounds b_(m+1)/b_m for all m > k
-        if q * x < 1:
-            remainder = (arb(3).sqrt() * following * power * x / (1 - q * x)).abs_upper()
-            if remainder < budget or k > 4000:
-                return total, remainder
+        remainder = _majorant_tail(b, k, W, power, x)
+        if remainder is not None and (remainder < budget or k > 4000):
+            return total, remainder
+
+
+def _majorant_tail(b: arb, k: int, W: arb, power: arb, x: arb) -> arb | None:
+    """``sqrt(3) sum_(m > k) b_m x^m`` bounded from ``b = b_k`` and ``power = x^k`` (None when it diverges).
+
+    ``b_(m+1)/b_m = (m + W)/(m + 1)``: decreasing towards 1 when W > 1, increasing towards 1 when
+    W < 1, so every ratio after k is at most ``q = max(1, (k + 1 + W)/(k + 2))`` and the tail is at
+    most ``sqrt(3) b_(k+1) x^(k+1) / (1 - q x)`` (a geometric series, when q x < 1).
+    """
+    following = b * (k + W) / (k + 1)
+    q = max(arb(1), (k + 1 + W) / (k + 2))
+    if not q * x < 1:
+        return None
+    return (arb(3).sqrt() * following * power * x / (1 - q * x)).abs_upper()
 
 
 def _angle_from_cosine(cos_angle: arb) -> arb:

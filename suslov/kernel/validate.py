@@ -145,6 +145,7 @@ def odd_p(value, allowed, what: str) -> int:
     if p < 1 or p % 2 == 0:
         raise ValueError(f"p={p}: must be an odd positive integer ({what})")
     if p not in allowed:
-        raise ValueError(f"p={p}: outside the certified range of this build (odd p <= {max(allowed)}); "
-                         "rebuild with build_formulas.py --pmax N")
+        raise ValueError(f"p={p}: outside the certified range of this module (odd p <= {max(allowed)}); "
+                         f"for a larger range: sf = suslov.load_formulas(pmax={p}) (built once into the per-user "
+                         "store, the checkout untouched), or python build_formulas.py --pmax N --install")
     return p

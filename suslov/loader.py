@@ -1,0 +1,175 @@
+"""Which generated module the run-time package uses, and certified modules for any p range (issue 26).
+
+The build emits one module, ``suslov_formulas.py`` (certified as emitted: ``derivations/roundtrip.py``),
+with the per-p objects up to its ``PMAX``.  This module finds the one in use and loads others:
+
+* :func:`active_formulas` -- the active module, in this order: the one given to :func:`use_formulas`; the
+  directory in the environment variable ``SUSLOV_FORMULAS``; ``generated/suslov_formulas.py`` of a
+  source checkout; ``suslov.formulas.suslov_formulas`` of an installed wheel (the same file, shipped
+  inside the ``suslov`` namespace).
+* :func:`load_formulas` -- a certified module for a larger range without touching the checkout:
+  ``load_formulas(pmax=101)`` returns a module from the per-user store (:func:`store_dir`), building
+  it once with ``build_formulas.py --pmax 101 --install`` (which certifies it, through the certificate
+  cache, with progress on stderr) when the store has none that covers the range;
+  ``load_formulas(path=DIR)`` loads a tree written with ``--out DIR``.
+* :data:`gf` -- a stand-in that forwards attribute access to the active module at call time, so the
+  simulator modules follow :func:`use_formulas` without re-importing.
+
+Building needs the source checkout (``derivations/`` and ``build_formulas.py``); a wheel ships the
+default module only and says so.
+"""
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+from types import ModuleType
+
+__all__ = ["active_formulas", "use_formulas", "load_formulas", "store_dir", "gf", "FORMULAS_ENV", "DATA_ENV"]
+
+FORMULAS_ENV = "SUSLOV_FORMULAS"   # a directory holding a generated suslov_formulas.py
+DATA_ENV = "SUSLOV_DATA_DIR"       # the per-user store (default: $XDG_DATA_HOME/suslov-certified)
+_CHECKOUT = Path(__file__).resolve().parent.parent
+_active: ModuleType | None = None
+_loaded: dict = {}
+
+
+def store_dir() -> Path:
+    """The per-user store of built modules: ``$SUSLOV_DATA_DIR``, else ``$XDG_DATA_HOME/suslov-certified``,
+    else ``~/.local/share/suslov-certified``."""
+    if os.environ.get(DATA_ENV):
+        return Path(os.environ[DATA_ENV]).expanduser()
+    base = os.environ.get("XDG_DATA_HOME") or Path.home() / ".local" / "share"
+    return Path(base) / "suslov-certified"
+
+
+def _pmax_of(directory: Path) -> int | None:
+    try:
+        return int(json.loads((directory / "certificates.json").read_text(encoding="utf-8"))["pmax"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def _load_directory(directory: Path) -> ModuleType:
+    directory = Path(directory).expanduser().resolve()
+    key = str(directory)
+    if key in _loaded:
+        return _loaded[key]
+    path = directory / "suslov_formulas.py"
+    if not path.is_file() or _pmax_of(directory) is None:
+        raise FileNotFoundError(f"{directory}: not a generated tree (needs suslov_formulas.py and a readable "
+                                "certificates.json; write one with build_formulas.py --out DIR)")
+    # a distinct module name per directory: two ranges can be loaded side by side
+    name = f"suslov_formulas_{abs(hash(key)):x}"
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    _loaded[key] = module
+    return module
+
+
+def _default() -> ModuleType:
+    if os.environ.get(FORMULAS_ENV):
+        return _load_directory(Path(os.environ[FORMULAS_ENV]))
+    try:
+        return importlib.import_module("generated.suslov_formulas")
+    except ModuleNotFoundError as error:
+        if error.name not in ("generated", "generated.suslov_formulas"):
+            raise
+    return importlib.import_module("suslov.formulas.suslov_formulas")
+
+
+def active_formulas() -> ModuleType:
+    """The generated module in use (see the module docstring for the order of precedence)."""
+    global _active
+    if _active is None:
+        _active = _default()
+    return _active
+
+
+def use_formulas(module_or_path=None) -> ModuleType:
+    """Make ``module_or_path`` (a module from :func:`load_formulas` or a directory) the one ``suslov``
+    uses; ``None`` goes back to the default.  Returns the active module."""
+    global _active
+    if module_or_path is None:
+        _active = None
+    elif isinstance(module_or_path, ModuleType):
+        _active = module_or_path
+    else:
+        _active = _load_directory(Path(module_or_path))
+    return active_formulas()
+
+
+def _stored(pmax: int) -> Path | None:
+    """The stored tree with the smallest PMAX >= pmax, if any."""
+    root = store_dir()
+    if not root.is_dir():
+        return None
+    found = [(_pmax_of(entry), entry) for entry in root.iterdir() if entry.is_dir() and entry.name.startswith("pmax-")]
+    covering = sorted((p, entry) for p, entry in found if p is not None and p >= pmax)
+    return covering[0][1] if covering else None
+
+
+def load_formulas(pmax: int | None = None, path=None, *, build: bool = True, use: bool = False,
+                  quiet: bool = False) -> ModuleType:
+    """A certified generated module covering ``p <= pmax`` (or the tree at ``path``).
+
+    From the per-user store when a stored module covers the range; otherwise, with ``build=True``,
+    built once by the source checkout's ``build_formulas.py --pmax N --install`` (progress and the
+    time estimate on stderr unless ``quiet``; about 1 minute for pmax 51, 4 for 101 on two cores).
+    ``use=True`` also makes it the module ``import suslov`` uses (:func:`use_formulas`).
+
+    >>> sf = load_formulas(pmax=15)              # doctest: +SKIP
+    >>> sf.gamma_basis(0.1, 15, 0.5).shape        # doctest: +SKIP
+    (3, 3)
+    """
+    if (pmax is None) == (path is None):
+        raise ValueError("load_formulas: give exactly one of pmax (a p range) or path (a --out directory)")
+    if path is not None:
+        module = _load_directory(Path(path))
+    else:
+        if isinstance(pmax, bool) or not isinstance(pmax, int) or pmax < 1:
+            raise ValueError(f"pmax={pmax!r}: must be a positive integer")
+        default = active_formulas()
+        if default.PMAX >= pmax:
+            module = default
+        else:
+            entry = _stored(pmax)
+            if entry is None:
+                if not build:
+                    raise LookupError(f"no stored module covers pmax={pmax} in {store_dir()}")
+                _build(pmax, quiet)
+                entry = _stored(pmax)
+            module = _load_directory(entry)
+    return use_formulas(module) if use else module
+
+
+def _build(pmax: int, quiet: bool) -> None:
+    script = _CHECKOUT / "build_formulas.py"
+    if not (script.is_file() and (_CHECKOUT / "derivations").is_dir()):
+        raise RuntimeError(f"pmax={pmax}: building a module needs the source checkout (build_formulas.py and "
+                           "derivations/); this installation ships the default module only (pmax "
+                           f"{active_formulas().PMAX})")
+    command = [sys.executable, str(script), "--pmax", str(pmax), "--install"] + (["--quiet"] if quiet else [])
+    done = subprocess.run(command, cwd=_CHECKOUT, stdout=subprocess.PIPE if quiet else None, text=True)
+    if done.returncode != 0:
+        raise RuntimeError(f"build_formulas.py --pmax {pmax} --install failed (exit {done.returncode}); see its "
+                           "message above")
+
+
+class _Forward:
+    """Attribute access forwarded to the active generated module (see :data:`gf`)."""
+
+    def __getattr__(self, name: str):
+        return getattr(active_formulas(), name)
+
+    def __repr__(self) -> str:
+        return f"<forward to {active_formulas().__name__} (pmax {active_formulas().PMAX})>"
+
+
+gf = _Forward()
