@@ -5,7 +5,7 @@ Usage examples::
 
     python build_formulas.py                 # full build into generated/
     python build_formulas.py --pmax 51       # per-p tables up to p = 51
-    python build_formulas.py --check         # rebuild elsewhere, fail if generated/ differs
+    python build_formulas.py --check         # compare generated/ with the build (cache or rebuild), exit 3 if it differs
     python build_formulas.py --only model    # certify one derivation (generated/ untouched)
     python build_formulas.py --verify generated   # certify an existing tree's module, rewrite nothing
     python build_formulas.py --pdf           # build, then pdflatex into build/pdf/ (generated/ untouched)
@@ -87,7 +87,9 @@ def parser() -> argparse.ArgumentParser:
                          "suslov.load_formulas(pmax=N) finds it) instead of generated/: any p range without touching "
                          "the checkout")
     ap.add_argument("--check", action="store_true",
-                    help="rebuild in a temporary directory and fail if the output directory differs")
+                    help="compare the output directory with the build these sources and options give (from the "
+                         "certificate cache when an entry matches, else rebuilt in a temporary directory; with "
+                         "--no-cache always rebuilt) and exit 3 if it differs")
     ap.add_argument("--verify", type=Path, metavar="DIR", default=None,
                     help="certify the generated module in DIR (the committed generated/ or a copy) against the "
                          "derivations without rewriting anything: exit 0, or 1 naming the first discrepancy; "
@@ -168,7 +170,8 @@ def diff_command(old: str, new: Path) -> int:
     except DiffError as error:
         print(f"build_formulas.py: --diff: {error}", file=sys.stderr)
         return 2 if "neither a directory" in str(error) or "directory without" in str(error) else 1
-    print(f"wrote {pdf} (latexdiff of suslov_formulas.tex: deletions struck out, additions underlined)")
+    print(f"wrote {pdf} and {pdf.with_name('certificates-diff.pdf').name} (latexdiff of the formulas and the "
+          "certificates documents: deletions struck out, additions underlined)")
     return 0
 
 

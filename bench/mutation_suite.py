@@ -150,7 +150,17 @@ def run_mutant(mutant) -> dict:
     rejected = done.returncode != 0
     return {"id": ident, "file": path, "detector": detector, "seconds": round(seconds, 1),
             "outcome": "rejected" if rejected else "SILENT",
-            "evidence": (done.stderr.strip().splitlines() or done.stdout.strip().splitlines() or [""])[-1][:160]}
+            "evidence": _evidence(done.stdout + "\n" + done.stderr)}
+
+
+def _evidence(output: str) -> str:
+    """The line that says why: a failed test's name, or the build's message naming the claim."""
+    lines = [line.strip() for line in output.splitlines() if line.strip()]
+    for marker in ("FAILED ", "build_formulas.py: --verify", "build_formulas.py: "):
+        found = [line for line in lines if line.startswith(marker) and "nothing was written" not in line]
+        if found:
+            return found[0][:200]
+    return (lines or [""])[-1][:200]
 
 
 def table(rows: list, equivalent: list) -> str:

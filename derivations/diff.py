@@ -7,13 +7,19 @@ nothing is checked out).  The report names what changed, by what a reader recogn
   section and title): added, removed, changed;
 * **tables**: the per-p, errata, monodromy, Galois, basis and integral tables: which changed,
   with the number of rows added and removed;
+* **tables**: compared with the certificate keys blanked (``\\certkey{...}`` holds a sequence
+  number that shifts when a certificate is inserted elsewhere: a change of keys alone is not a
+  change of a table);
 * **certificates**: from ``certificates.json``, matched by (derivation, paper label, claim), not
-  by key (keys are sequence numbers and shift when a certificate is inserted): added, removed,
-  outcome or method changed; errata rows by label: added, removed, status changed.
+  by key (keys are sequence numbers and shift when a certificate is inserted); the unmatched ones
+  of one (derivation, label) are then paired by claim similarity (``difflib`` ratio >= 0.6, best
+  pairs first) and reported as *reworded*, with any change of outcome or method; what is left is
+  added or removed; errata rows by label: added, removed, status changed.
 
-Then ``latexdiff --flatten`` marks the changes in the formulas document and pdflatex compiles
-it into OUTDIR (default ``build/diff/``, outside the tracked tree).  Debian: ``apt-get install
-latexdiff``.
+Then ``latexdiff --flatten`` marks the changes in the formulas document and in the certificates
+document (``--append-textcmd=certkey``, so a changed key is marked too, not hidden inside the
+command's argument) and pdflatex compiles both into OUTDIR (default ``build/diff/``, outside the
+tracked tree).  Debian: ``apt-get install latexdiff``.
 """
 from __future__ import annotations
 
@@ -27,6 +33,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 DOCUMENT = "suslov_formulas.tex"
+DOCUMENTS = (DOCUMENT, "certificates.tex")   # the PDFs latexdiff marks
+REWORDED = 0.6                               # claim similarity above which an unmatched pair is one claim reworded
 TABLES = ("errata_table.tex", "per_p_table.tex", "monodromy_tables.tex", "galois_tables.tex", "basis_tables.tex",
           "integrals_table.tex")
 
@@ -39,7 +47,7 @@ class DiffError(RuntimeError):
 class TreeDiff:
     formulas: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": []})
     tables: list = field(default_factory=list)
-    certificates: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": []})
+    certificates: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": [], "reworded": []})
     errata: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": []})
 
     def empty(self) -> bool:
@@ -107,6 +115,33 @@ def _certificate_index(document: dict) -> dict:
     return {(c["derivation"], c["label"], c["claim"]): c for c in document.get("certificates", [])}
 
 
+def _pair_reworded(removed: list, added: list) -> tuple[list, list, list]:
+    """Pairs (old, new) of one (derivation, label) whose claims are similar (ratio >= REWORDED), best first;
+    returns (pairs, still removed, still added)."""
+    candidates = []
+    for i, a in enumerate(removed):
+        for j, b in enumerate(added):
+            if (a["derivation"], a["label"]) == (b["derivation"], b["label"]):
+                ratio = difflib.SequenceMatcher(None, a["claim"], b["claim"]).ratio()
+                if ratio >= REWORDED:
+                    candidates.append((-ratio, i, j))
+    pairs, used_old, used_new = [], set(), set()
+    for _, i, j in sorted(candidates):
+        if i not in used_old and j not in used_new:
+            pairs.append((removed[i], added[j]))
+            used_old.add(i)
+            used_new.add(j)
+    return (pairs, [a for i, a in enumerate(removed) if i not in used_old],
+            [b for j, b in enumerate(added) if j not in used_new])
+
+
+_CERTKEY = re.compile(r"\\certkey\{[^{}]*\}")
+
+
+def _table_lines(text: str) -> list[str]:
+    return [_CERTKEY.sub(r"\\certkey{}", line) for line in text.splitlines()]
+
+
 def _read(directory: Path, name: str) -> str:
     path = directory / name
     return path.read_text(encoding="utf-8") if path.is_file() else ""
@@ -120,14 +155,15 @@ def compare(old: Path, new: Path) -> TreeDiff:
     result.formulas["removed"] = [k for k in before if k not in after]
     result.formulas["changed"] = [k for k in after if k in before and after[k] != before[k]]
     for name in TABLES:
-        a, b = _read(old, name).splitlines(), _read(new, name).splitlines()
+        a, b = _table_lines(_read(old, name)), _table_lines(_read(new, name))
         if a != b:
             ops = list(difflib.ndiff(a, b))
             result.tables.append((name, sum(o.startswith("+ ") for o in ops), sum(o.startswith("- ") for o in ops)))
     docs = [json.loads(_read(d, "certificates.json") or "{}") for d in (old, new)]
     c_old, c_new = (_certificate_index(d) for d in docs)
-    result.certificates["added"] = [c_new[k] for k in c_new if k not in c_old]
-    result.certificates["removed"] = [c_old[k] for k in c_old if k not in c_new]
+    reworded, removed, added = _pair_reworded([c_old[k] for k in c_old if k not in c_new],
+                                              [c_new[k] for k in c_new if k not in c_old])
+    result.certificates.update(added=added, removed=removed, reworded=reworded)
     result.certificates["changed"] = [(c_old[k], c_new[k]) for k in c_new if k in c_old and
                                       (c_old[k]["outcome"], c_old[k]["method"]) != (c_new[k]["outcome"],
                                                                                     c_new[k]["method"])]
@@ -150,6 +186,10 @@ def report(diff: TreeDiff, old_name: str, new_name: str) -> str:
     lines += [f"  table changed: {name} (+{plus} -{minus} lines)" for name, plus, minus in diff.tables]
     lines += [f"  certificate added: [{c['label']}] {c['claim']} ({c['outcome']})" for c in diff.certificates["added"]]
     lines += [f"  certificate removed: [{c['label']}] {c['claim']}" for c in diff.certificates["removed"]]
+    lines += [f"  certificate reworded: [{a['label']}] {a['claim']!r} -> {b['claim']!r}"
+              + ("" if (a["outcome"], a["method"]) == (b["outcome"], b["method"])
+                 else f"; {a['outcome']} ({a['method']}) -> {b['outcome']} ({b['method']})")
+              for a, b in diff.certificates["reworded"]]
     lines += [f"  certificate changed: [{a['label']}] {a['claim']}: {a['outcome']} ({a['method']}) -> {b['outcome']} "
               f"({b['method']})" for a, b in diff.certificates["changed"]]
     lines += [f"  erratum added: {e['label']} ({e['status']})" for e in diff.errata["added"]]
@@ -161,19 +201,19 @@ def report(diff: TreeDiff, old_name: str, new_name: str) -> str:
     return "\n".join(lines)
 
 
-def latexdiff_pdf(old: Path, new: Path, outdir: Path) -> Path:
-    """``latexdiff --flatten`` of the formulas document, compiled into ``outdir``; returns the PDF."""
+def latexdiff_pdf(old: Path, new: Path, outdir: Path, document: str = DOCUMENT) -> Path:
+    """``latexdiff --flatten`` of one document (certificate keys marked too), compiled into ``outdir``."""
     for tool, package in (("latexdiff", "latexdiff"), ("pdflatex", "texlive-latex-base")):
         if shutil.which(tool) is None:
             raise DiffError(f"{tool} not found (Debian: apt-get install {package})")
     outdir = Path(outdir).resolve()
     outdir.mkdir(parents=True, exist_ok=True)
-    marked = subprocess.run(["latexdiff", "--flatten", str(Path(old).resolve() / DOCUMENT),
-                             str(Path(new).resolve() / DOCUMENT)], capture_output=True, text=True, check=False,
-                            timeout=600)
+    marked = subprocess.run(["latexdiff", "--flatten", "--append-textcmd=certkey",
+                             str(Path(old).resolve() / document), str(Path(new).resolve() / document)],
+                            capture_output=True, text=True, check=False, timeout=600)
     if marked.returncode != 0:
         raise DiffError(f"latexdiff failed: {marked.stderr.strip()[-500:]}")
-    source = outdir / "suslov_formulas-diff.tex"
+    source = outdir / (Path(document).stem + "-diff.tex")
     source.write_text(marked.stdout, encoding="utf-8")
     for _ in range(2):
         run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", source.name], cwd=outdir,
@@ -191,4 +231,8 @@ def diff_trees(old: str, new: Path, repository: Path, outdir: Path | None, echo=
     with tempfile.TemporaryDirectory(prefix="suslov-diff-") as tmp:
         old_tree = materialise(old, repository, Path(tmp) / "old")
         echo(report(compare(old_tree, new), old, str(new)))
-        return latexdiff_pdf(old_tree, new, outdir) if outdir is not None else None
+        if outdir is None:
+            return None
+        pdfs = [latexdiff_pdf(old_tree, new, outdir, document) for document in DOCUMENTS
+                if (old_tree / document).is_file() and (Path(new) / document).is_file()]
+        return pdfs[0]

@@ -317,5 +317,6 @@ def summary(build: Build, top: int = 5) -> str:
                      "  (the emitted module, as written)")
     lines.append(f"costliest {min(top, len(certs))}:")
     for c in sorted(certs, key=lambda c: -c.seconds)[:top]:
-        lines.append(f"  {c.seconds:8.4f} s  [{c.label}] {c.claim}")
+        verdict = c.outcome.value + (" as predicted: the printed form is refuted" if c.expected is Outcome.FAIL else "")
+        lines.append(f"  {c.seconds:8.4f} s  [{c.label}] {c.claim} ({verdict})")
     return "\n".join(lines)

@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike
 from suslov.kernel import fourier, horner, phase, trig_series
 from suslov.kernel.contexts import ARB, FLOAT, MP
 from suslov.kernel.enclosure import to_arb
+from suslov.kernel.display import Ball, MPValue
 from suslov.kernel.lru import BoundedCache
 from suslov.kernel.frames import canonical_frame, rotation_about_e3
 from suslov.kernel.validate import PREC_RANGE, mp_real, odd_p, precision, rational, real_array, real_scalar
@@ -175,7 +176,8 @@ def omega_mp(t, p, d, dps: int = 50) -> tuple:
     """mpmath twin of :func:`omega` at ``dps`` significant digits (scalars).
 
     Arguments: int, float, ``Fraction``, ``mpmath.mpf`` or a decimal string (``"0.1"`` is
-    exactly one tenth).  Returns a pair of ``mpmath.mpf``.
+    exactly one tenth).  Returns a pair of ``mpmath.mpf`` that print their ``dps`` digits
+    (``mpmath.nstr(x, n)`` for another number of digits).
 
     >>> mpmath.nstr(omega_mp("0.25", 3, "0.5", dps=30)[0], 20)   # 6 tanh(1/4)
     '1.4695119744222547757'
@@ -184,7 +186,7 @@ def omega_mp(t, p, d, dps: int = 50) -> tuple:
     with mpmath.workdps(dps):
         t, p, d = mp_real("t", t), mp_real("p", p, nonzero=True), mp_real("d", d, positive=True)
         w1, w2 = _omega(MP, t, p, d)
-        return +w1, +w2
+        return MPValue(+w1, dps), MPValue(+w2, dps)
 
 
 def _tensor_arrays(I11, I22, I13, I23):
@@ -246,7 +248,7 @@ def omega_general_mp(t, I11, I22, I13, I23, branch: int = 1, dps: int = 50) -> t
             raise ValueError("I13=0 and I23=0: the constraint axis is a principal axis, every motion is an equilibrium")
         r = _branch(branch) * mpmath.sqrt(I11 * I22)
         w1, w2 = _omega_general(MP, t, I11, I22, I13, I23, r)
-        return +w1, +w2
+        return MPValue(+w1, dps), MPValue(+w2, dps)
 
 
 # ---------------------------------------------------------------- first integrals (shared recipe)
@@ -389,7 +391,7 @@ def first_integral_mp(p: int, d, omega1, omega2, gamma1, gamma2, gamma3, dps: in
         for name, g in zip(("P1", "P2", "P3"), (g1, g2, g3)):
             total += g * mpmath.fsum(mpmath.mpf(a.numerator) / a.denominator * w1 ** (p - k) * w2**k
                                      for k, a in enumerate(exact[name]))
-        return +total
+        return MPValue(+total, dps)
 
 
 # ---------------------------------------------------------------- the orthonormal basis (shared recipe)
@@ -653,7 +655,7 @@ def scattering_angle_mp(p, d, dps: int = 50):
         s, c = abs(mpmath.sinpi(p / 2)), abs(mpmath.cospi(p / 2))
         out = _scattering_angle(MP, mpmath.pi * abs(p) / (2 * d), s, c)
     with mpmath.workdps(dps):
-        return +out
+        return MPValue(+out, dps)
 
 
 def scattering_angle_ball(p, d, prec: int = 128):
@@ -677,7 +679,7 @@ def scattering_angle_ball(p, d, prec: int = 128):
         if not d > 0:
             raise ValueError(f"d={d}: must be positive")
         s, c = abs((p / 2).sin_pi()), abs((p / 2).cos_pi())
-        return _scattering_angle(ARB, flint.arb.pi() * abs(p) / (2 * d), s, c)
+        return Ball(_scattering_angle(ARB, flint.arb.pi() * abs(p) / (2 * d), s, c))
     finally:
         flint.ctx.prec = saved
 

@@ -25,7 +25,10 @@ from .sweep import LargeSweep, chunk_dir, plan_sweep, run_sweep
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="suslov", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(
+        prog="suslov", description="Run declarative scene files (TOML) of the Suslov problem: one body or a sweep.",
+        epilog="Exit status: 0 success, 2 bad input (scene file, output directory, an unconfirmed large sweep), "
+               "1 a computation failed, 130 interrupted. Scene schema: scenes/README.md.")
     sub = parser.add_subparsers(dest="command", required=True)
     sim = sub.add_parser("simulate", help="run a scene file")
     sim.add_argument("scene", help="scene file (TOML), see scenes/README.md")

@@ -218,12 +218,17 @@ def _data_files(run: Run, out: Path) -> list[str]:
     return written
 
 
+def _cell(text) -> str:
+    """A Markdown table cell: a ``|`` inside it (as in "|omega|") must not end the cell."""
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
 def _report(run: Run, files: list[str]) -> str:
     plan = run.plan
     lines = [f"# Scene {plan.scene.name}", "", plan.scene.description or "", "",
              f"Scene file: `{plan.scene.path.name}`", "", "## Plan and what ran", "", "```", plan.explain(), "```", "",
              "| step | method | seconds |", "|---|---|---|"]
-    lines += [f"| {e['step']} | {e['method']} | {e['seconds']:.3f} |" for e in run.executed]
+    lines += [f"| {_cell(e['step'])} | {_cell(e['method'])} | {e['seconds']:.3f} |" for e in run.executed]
     lines += ["", "## Results", "", "```json", json.dumps(run.results, indent=1, sort_keys=True), "```", "",
               "## Files", ""] + [f"- `{f}`" for f in files]
     return "\n".join(lines) + "\n"

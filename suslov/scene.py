@@ -245,7 +245,8 @@ def _numerics(path, numerics):
     if method in SCIPY_METHODS:
         method = f"scipy:{method}"
     if method not in METHODS:
-        raise SceneError(path, "numerics.method", f"{method!r}: must be one of {', '.join(METHODS)}")
+        raise SceneError(path, "numerics.method", f"{method!r}: must be one of {', '.join(METHODS)} (a bare SciPy "
+                         f"name, {', '.join(SCIPY_METHODS)}, is read as scipy:NAME)")
     return rtol, atol, method
 
 

@@ -26,6 +26,11 @@ from dataclasses import dataclass
 import numpy as np
 
 
+# the turning angle in the scene file's own fields (inertia about the centre of mass): the one text that the
+# scene's description quotes and tests/test_scenes.py evaluates against turning_angle()
+TURNING_FORMULA = "pi sqrt(1 + inertia/(mass offset^2))"
+
+
 @dataclass(frozen=True)
 class Sleigh:
     mass: float
@@ -54,7 +59,8 @@ class Sleigh:
         return self.speed * np.tanh(s), self.spin * sech, (self.spin / self.rate) * gd
 
     def turning_angle(self) -> float:
-        """Angle between the limit directions of the blade: pi sqrt(Ic / (m offset^2))."""
+        """Angle between the limit directions of the blade: pi sqrt(Ic / (m offset^2)) with Ic about the contact
+        point, i.e. :data:`TURNING_FORMULA` in the scene's fields."""
         return math.pi * math.sqrt(self.inertia_contact / (self.mass * self.offset**2))
 
     def energy(self, t) -> np.ndarray:

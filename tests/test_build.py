@@ -130,3 +130,14 @@ def test_pmax_splits_parities():
     rows = derive(options, ["special_case"]).results["special_case"].exports["per_p"]
     assert [r["p"] for r in rows] == list(range(1, 9))
     assert [r["parity"] for r in rows[:2]] == ["odd", "even"]
+
+
+def test_costliest_list_shows_each_outcome(default_build):
+    """The console's "costliest" list showed refuted claims as if they were proved."""
+    from derivations.pipeline import summary
+
+    text = summary(default_build, top=len(default_build.log.certificates))
+    costly = text.split("costliest", 1)[1].splitlines()[1:]
+    refuted = [c for c in default_build.log.certificates if c.expected.value == "fail"]
+    assert refuted and all(line.rstrip().endswith(")") for line in costly)
+    assert sum("refuted" in line for line in costly) == len(refuted)

@@ -1,6 +1,7 @@
 """build_formulas.py --diff OLD: change lists between generated trees and the latexdiff PDF (issue 14)."""
 import json
 import os
+import re
 import shutil
 
 import pytest
@@ -93,3 +94,46 @@ def test_git_revision_and_latexdiff_pdf(tmp_path, capsys):
     # a git revision is read with git show, nothing checked out
     tree = diff.materialise("HEAD", ROOT, tmp_path / "head")
     assert (tree / "suslov_formulas.tex").is_file()
+
+
+def test_reworded_claim_is_one_reworded_certificate_not_added_and_removed(tmp_path):
+    old = copy_of_generated(tmp_path)
+    document = json.loads((old / "certificates.json").read_text(encoding="utf-8"))
+    original = document["certificates"][3]["claim"]
+    document["certificates"][3]["claim"] = original.replace("e", "E", 2) + " (older wording)"
+    (old / "certificates.json").write_text(json.dumps(document), encoding="utf-8")
+    result = diff.compare(old, GENERATED)
+    assert result.certificates["added"] == [] and result.certificates["removed"] == []
+    assert [b["claim"] for _, b in result.certificates["reworded"]] == [original]
+    assert "certificate reworded" in diff.report(result, "old", "new")
+
+
+def test_a_table_whose_certificate_keys_alone_changed_is_unchanged(tmp_path):
+    old = copy_of_generated(tmp_path)
+    table = (old / "monodromy_tables.tex").read_text(encoding="utf-8")
+    shifted = re.sub(r"\\certkey\{([a-z_]+):(\d+)\}", lambda m: rf"\certkey{{{m.group(1)}:{int(m.group(2)) + 7:03d}}}",
+                     table)
+    assert shifted != table
+    (old / "monodromy_tables.tex").write_text(shifted, encoding="utf-8")
+    assert diff.compare(old, GENERATED).tables == []
+
+
+def test_latexdiff_marks_a_changed_formula_and_a_changed_certificate(tmp_path):
+    if shutil.which("latexdiff") is None or shutil.which("pdflatex") is None:
+        if os.environ.get("CI"):
+            pytest.fail("latexdiff/pdflatex not found under CI: .ci/run must install latexdiff and texlive-latex-base")
+        pytest.skip("latexdiff or pdflatex not installed (apt-get install latexdiff texlive-latex-base)")
+    old = copy_of_generated(tmp_path)
+    body = (old / "formulas_body.tex").read_text(encoding="utf-8")
+    (old / "formulas_body.tex").write_text(body.replace(r"\frac{(I_{11}I_{22})^2}{D}", r"\frac{1}{D}", 1),
+                                           encoding="utf-8")
+    table = (old / "certificates_table.tex").read_text(encoding="utf-8")
+    key = next(line for line in table.splitlines() if r"\certkey{" in line).split(r"\certkey{")[1].split("}")[0]
+    (old / "certificates_table.tex").write_text(table.replace(r"\certkey{" + key + "}", r"\certkey{old:999}", 1),
+                                                encoding="utf-8")
+    diff.diff_trees(str(old), GENERATED, ROOT, tmp_path / "diff", echo=lambda text: None)
+    formulas, certificates = ((tmp_path / "diff" / name).read_text(encoding="utf-8").split(r"\begin{document}", 1)[1]
+                              for name in ("suslov_formulas-diff.tex", "certificates-diff.tex"))
+    assert (tmp_path / "diff" / "certificates-diff.pdf").is_file()
+    assert r"\DIFadd{\frac{(I_{11}I_{22})^2}{D}" in formulas          # the changed formula, marked
+    assert re.search(r"\\certkey\{[^\n]*\\DIFadd\{", certificates)     # the changed key, marked inside \certkey

@@ -203,3 +203,61 @@ def test_explain_prints_plan_without_running(tmp_path, monkeypatch, capsys):
     forbid(monkeypatch, (suslov.cli, "execute"), (suslov.cli, "write_outputs"))
     assert main(["simulate", str(SCENES[0]), "--explain"]) == 0
     assert "omega" in capsys.readouterr().out
+
+
+def test_sleigh_scene_text_and_title_give_the_same_angle():
+    """Fig. 3: the formula in the scene's description, evaluated with the scene's own fields, is the angle the
+    figure title prints (the description once quoted Ic where the field is the inertia about the centre of mass)."""
+    import math
+    import tomllib
+
+    from suslov.sleigh import TURNING_FORMULA, Sleigh
+
+    scene = tomllib.loads((Path(__file__).resolve().parent.parent / "scenes" / "fig3_sleigh.toml").read_text(encoding="utf-8"))
+    body = scene["body"]
+    assert TURNING_FORMULA in scene["description"]
+    expression = TURNING_FORMULA.replace("pi sqrt", "math.pi * math.sqrt").replace("^2", "**2").replace(
+        "mass offset", "mass * offset")
+    from_text = eval(expression, {"math": math}, dict(body))
+    sleigh = Sleigh(body["mass"], body["inertia"], body["offset"], 1.0)
+    assert from_text == pytest.approx(sleigh.turning_angle(), rel=1e-14)
+    assert math.degrees(from_text) == pytest.approx(241.50, abs=0.01)
+
+
+def test_one_method_vocabulary_in_scenes_and_docs():
+    """Scenes and their docs write methods as the error message lists them (taylor, scipy:NAME)."""
+    import re
+    import tomllib
+
+    from suslov.scene import METHODS
+
+    root = Path(__file__).resolve().parent.parent
+    for path in SCENES:
+        method = tomllib.loads(path.read_text(encoding="utf-8")).get("numerics", {}).get("method")
+        assert method is None or method in METHODS, (path.name, method)
+    for doc in (root / "README.md", root / "scenes" / "README.md"):
+        for method in re.findall(r'method = "([^"]+)"', doc.read_text(encoding="utf-8")):
+            assert method in METHODS, (doc.name, method)
+
+
+def test_help_is_plain_text(capsys):
+    """``suslov --help`` printed raw reST (double backquotes) from the module docstring."""
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    text = capsys.readouterr().out
+    assert "``" not in text and ":func:" not in text and "simulate" in text
+
+
+def test_report_table_survives_a_pipe_in_a_cell():
+    """report.md's step table broke on an unescaped '|' in a method text."""
+    from types import SimpleNamespace
+
+    from suslov.engine import _report
+
+    scene = SimpleNamespace(name="s", description="", path=Path("s.toml"))
+    plan = SimpleNamespace(scene=scene, explain=lambda: "plan")
+    run = SimpleNamespace(plan=plan, executed=[{"step": "angle", "method": "closed form, |p| < 1e3", "seconds": 0.1}],
+                          results={})
+    rows = [line for line in _report(run, []).splitlines() if line.startswith("| angle")]
+    cells = [c for c in __import__("re").split(r"(?<!\\)\|", rows[0])[1:-1]]
+    assert len(cells) == 3 and cells[1].strip() == r"closed form, \|p\| < 1e3"

@@ -57,6 +57,8 @@ from fractions import Fraction
 
 from flint import acb, arb, arb_mat, arb_series, ctx
 
+from .display import Ball
+
 __all__ = ["AngleEnclosure", "EnclosureTooCostly", "DIGITS_RANGE", "MAX_SECONDS", "to_arb", "ss_angle_enclosure"]
 
 _UNIT = arb(0, 1)  # the ball [-1, 1]: x + _UNIT * r widens x by r (r an exact upper bound) without rounding
@@ -68,7 +70,7 @@ GRID = 4           # sub-boxes per side for those bounds
 class AngleEnclosure:
     """The scattering angle as a ball, with how it was obtained."""
 
-    angle: arb                 # contains Delta psi
+    angle: arb                 # contains Delta psi (a Ball: its repr shows the digits the radius supports)
     cos_angle: arb             # contains cos Delta psi = -<gamma(+oo), n>
     window: tuple              # (s0, s1): rate-1 times where the tails take over
     steps: int
@@ -338,7 +340,7 @@ def ss_angle_enclosure(u, v, digits: float = 30, prec: int | None = None, step: 
         cos_angle = (-along).intersection(arb(0, 1))
         angle = _angle_from_cosine(cos_angle)
         s0, s1 = -float(S), float(S)
-        return AngleEnclosure(angle, cos_angle, (s0, s1), steps, order, ctx.prec,
+        return AngleEnclosure(Ball(angle), Ball(cos_angle), (s0, s1), steps, order, ctx.prec,
                               {"tail_minus": float(tail_minus.abs_upper()), "steps": float(step_error.abs_upper()),
                                "tail_plus": float(tail_plus.abs_upper())}, at_zero, at_start)
     finally:
