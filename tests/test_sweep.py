@@ -8,6 +8,7 @@ import json
 import socket
 import threading
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -264,3 +265,25 @@ def test_enclosure_effect_in_a_sweep_contains_the_float_angle(tmp_path):
         assert 0 < radius < 1e-12 and table["scattering_angle_enclosure_method"][i].endswith("(rigorous)")
         gap = abs(table["scattering_angle"][i] - table["scattering_angle_enclosure"][i])
         assert gap <= radius + table["scattering_angle_error"][i]
+
+
+def test_readme_quotes_the_general_body_study_as_it_is(tmp_path):
+    """README's study figures (bodies, points, angle range, energy spread) are those of the study's own output:
+    run it, compare with the committed summary (bench/results/general_body_study.json), then the README with both."""
+    import json
+    import re
+
+    root = Path(__file__).resolve().parent.parent
+    committed = json.loads((root / "bench" / "results" / "general_body_study.json").read_text())
+    table, _, _, _ = sweep.run_sweep(load_scene(root / "scenes" / "general_body_study.toml"), tmp_path / "study")
+    summary = json.loads((tmp_path / "study" / "results.json").read_text())["summary"]
+    assert summary["points"] == committed["points"] and summary["refused_or_failed"] == committed["refused"]
+    angles = summary["columns"]["scattering_angle"]
+    assert angles["min"] == pytest.approx(committed["angle_min"], abs=1e-9)
+    spread = summary["columns"]["energy_spread"]["max"]
+    assert spread <= 4 * committed["energy_spread_max"]           # rounding-level, CPU-dependent in its digits
+    readme = (root / "README.md").read_text(encoding="utf-8")
+    assert f"{committed['points']} points ({committed['bodies']} bodies at {committed['energies']} energies" in readme
+    assert f"ranges from {committed['angle_min']:.2f} to pi" in readme
+    quoted = float(re.search(r"largest spread ([0-9.e+-]+) rad over the (\d+) bodies", readme).group(1))
+    assert quoted == pytest.approx(committed["energy_spread_max"], rel=0.05)
