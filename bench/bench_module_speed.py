@@ -9,7 +9,7 @@ The earlier version is the committed ``generated/suslov_formulas.py`` of a git r
 loaded from a temporary file; both modules run in the same process on the same inputs.
 Times are medians of ``--repeat`` runs after a warm-up (the machine has 2 shared cores:
 compare ratios).  The first-call time calls the module's coefficient routine
-(``_series_float``) for a fresh d each repeat, since a p = 51 basis is beyond the default
+(``suslov.runtime.basis.series_float``) for a fresh d each repeat, since a p = 51 basis is beyond the default
 build's public range.
 
 Run:  python bench/bench_module_speed.py      (writes bench/results/module_speed.{md,json})
@@ -34,6 +34,7 @@ sys.path.insert(0, str(ROOT))
 
 from bench.machine_info import cpu_name  # noqa: E402
 from bench.timing import median_seconds  # noqa: E402
+from suslov.runtime.basis import series_float  # noqa: E402
 
 OLD_REVISION = "082128f"  # generated/ before the round trip (the hand-written template)
 TARGETS_NS = {"omega": 20.0, "gamma_basis": 150.0, "first_integral": 100.0}
@@ -76,7 +77,7 @@ def first_call(module, p: int, repeat: int) -> float:
     for _ in range(repeat):
         d = float(rng.uniform(0.2, 3.0))  # a fresh d: nothing cached
         start = time.perf_counter()
-        module._series_float(p, d)
+        series_float(module._basis_core, p, d)
         times.append(time.perf_counter() - start)
     return statistics.median(times) * 1e3
 

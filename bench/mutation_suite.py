@@ -38,6 +38,7 @@ from results_io import write_results  # noqa: E402
 ROOT = Path(__file__).resolve().parent.parent
 T = "templates/suslov_formulas.py.j2"
 G = "generated/suslov_formulas.py"
+R = "suslov/runtime/"
 
 # (id, file, original text (unique in the file), mutated text, detector)
 MUTANTS = [
@@ -53,7 +54,8 @@ MUTANTS = [
      "q_k = (2 * k + 1) ** 2 * D**2 + p", "build"),
     ("recipe-basis-DD-factor", "suslov/recipes/basis.py", "base = D * (X * ring.dx(N) * (1 + X**2) - 2 * q * X**2 * N)",
      "base = D * (X * ring.dx(N) * (1 + X**2) - q * X**2 * N)", "build"),
-    ("template-integrals-K-power", T, '"P2": core.K**2 * core.Den', '"P2": core.K * core.Den', "build"),
+    ("runtime-integrals-K-power", R + "integrals.py", '"P2": numerators.K**2 * numerators.Den',
+     '"P2": numerators.K * numerators.Den', "verify"),
     # suslov/kernel: run-time numerics (the round trip, in the build and in --verify)
     ("phase-cody-waite-constant", "suslov/kernel/phase.py", "_C1, _C2, _C3 = 6.283185303211212, 3.9683743166540886e-09",
      "_C1, _C2, _C3 = 6.283185303211212, 3.9683743166540886e-08", "verify"),
@@ -75,26 +77,26 @@ MUTANTS = [
      "step_error += _norm_upper([arb(0, b.rad()) for b in balls]) + truncation",
      "step_error += _norm_upper([arb(0, b.rad()) for b in balls])", "test:tests/test_independent_tables.py"),
     # the template (the build's round trip must reject the module it emits)
-    ("template-careful-phase-swap", T,
+    ("runtime-careful-phase-swap", R + "basis.py",
      "cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))",
-     "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))", "build"),
-    ("template-careful-phase-digits", T, "with mpmath.workdps(30 + int(math.log10(size + 1))):",
-     "with mpmath.workdps(15):", "build"),
-    ("template-kovalevskaya-fifth", T, "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]", "build"),
-    ("template-meromorphy-odd", T, "round(p) % 2 == 1", "round(p) % 2 == 0", "build"),
-    ("template-basis-sigma", T, "sign = -_BASIS_SIGMA[p]", "sign = _BASIS_SIGMA[p]", "build"),
-    ("template-special-case-turn", T, "if I23 > 0:", "if I23 < 0:", "build"),
-    ("template-dps-unchecked", T, '    dps = precision("dps", dps)\n    with mpmath.workdps(dps + 10):\n        p, d = mp_real',
-     '    with mpmath.workdps(dps + 10):\n        p, d = mp_real', "build"),
+     "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))", "verify"),
+    ("runtime-careful-phase-digits", R + "basis.py", "with mpmath.workdps(30 + int(math.log10(size + 1))):",
+     "with mpmath.workdps(15):", "verify"),
+    ("runtime-kovalevskaya-fifth", R + "bodies.py", "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]",
+     "verify"),
+    ("runtime-meromorphy-odd", R + "bodies.py", "round(p) % 2 == 1", "round(p) % 2 == 0", "verify"),
+    ("runtime-basis-sigma", R + "basis.py", "sign = -sigma[p]", "sign = sigma[p]", "verify"),
+    ("runtime-special-case-turn", R + "bodies.py", "if I23 > 0:", "if I23 < 0:", "verify"),
+    ("template-basis-call", T, "{{ f.call }}", "{{ f.call.replace('BASIS_PS, t, p, d)', 'BASIS_PS, -t, p, d)') }}",
+     "build"),
+    ("runtime-dps-unchecked", R + "angle.py", '    dps = precision("dps", dps)\n    with mpmath.workdps(dps + 10):',
+     '    with mpmath.workdps(dps + 10):', "verify"),
     # the emitted module itself (--verify of the committed tree)
     ("emitted-omega-sign", G, "k1 = -c*p/d", "k1 = c*p/d", "verify"),
     ("emitted-lambda-squared", G, "return (I11*I22*(I11 - I22)*", "return (I11*I22*(I11 + I22)*", "verify"),
     ("emitted-scattering-sech", G, "c*ctx.sech(x))", "c*ctx.sech(2*x))", "verify"),
-    ("emitted-kovalevskaya-fifth", G, "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]", "verify"),
-    ("emitted-meromorphy-odd", G, "round(p) % 2 == 1", "round(p) % 2 == 0", "verify"),
-    ("emitted-careful-phase-swap", G,
-     "cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))",
-     "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))", "verify"),
+    ("emitted-meromorphy-call", G, "_p_squared_i13_zero, _p_squared_i23_zero, I, tol)",
+     "_p_squared_i23_zero, _p_squared_i13_zero, I, tol)", "verify"),
     # the output directories (the data-loss findings)
     ("outdir-no-ownership-check", "suslov/outdir.py", "if any(path.iterdir()) and not _owned(path, tool, signature):",
      "if False:", "test:tests/test_outdir.py"),

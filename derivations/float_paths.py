@@ -387,6 +387,21 @@ def check_input_validation(log: CertificateLog, module) -> Certificate:
         len(calls), ("accepted: " + ", ".join(sorted(set(accepted)))) if accepted else f"{len(calls)} calls refused"))
 
 
+def check_load_certificates(log: CertificateLog, module, build) -> Certificate:
+    """``load_certificates`` returns the tree's own certificates document (pmax, errata, certificate list)."""
+    with stopwatch() as elapsed:
+        try:
+            document = module.load_certificates()
+            ok = (document.get("pmax") == build.options.pmax and isinstance(document.get("certificates"), list)
+                  and isinstance(document.get("errata"), list))
+            detail = "pmax, certificates and errata read back" if ok else f"read back: {sorted(document)[:5]}"
+        except Exception as error:   # any failure of the emitted function is the finding
+            ok, detail = False, f"{type(error).__name__}: {error}"
+    return log.record(Certificate("load_certificates returns the certificates document written beside the module",
+                                  "round trip", "exact comparison", Outcome.PASS if ok else Outcome.FAIL, elapsed[0], 1,
+                                  detail))
+
+
 def check_meromorphy(log: CertificateLog, module) -> Certificate:
     worst, points = 0.0, 0
     with stopwatch() as elapsed:
@@ -409,7 +424,8 @@ def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list
     certs = [check_omega(log, module), check_omega_general(log, module), check_scattering_angle(log, module),
              check_special_case_chain(log, module), check_meromorphy(log, module),
              check_kovalevskaya_exponents(log, module, build.results["kovalevskaya"].exports["matrix"]),
-             check_meromorphy_cases(log, module), check_input_validation(log, module)]
+             check_meromorphy_cases(log, module), check_input_validation(log, module),
+             check_load_certificates(log, module, build)]
     for p in module.INTEGRAL_PS:
         if p not in skip:
             certs.append(check_first_integral(log, module, p))

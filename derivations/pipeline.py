@@ -29,6 +29,7 @@ from pathlib import Path
 
 from suslov import outdir
 
+from . import public_api
 from .certificates import CertificateLog, Outcome
 from .options import BuildOptions
 from .pdf import is_byproduct
@@ -157,6 +158,12 @@ def emitted_formulas(build: Build) -> dict:
     return {item.name: item for name in build.names for item in build.results[name].exports.get("emit", ())}
 
 
+def _scattering_keys(build: Build) -> str:
+    if "scattering" not in build.results:
+        return "-"
+    return ", ".join(f"{k} {v}" for k, v in sorted(build.results["scattering"].exports["certificates"].items()))
+
+
 def context(build: Build) -> dict:
     """Everything the templates see (deterministic apart from ``costs``)."""
     certificates = [c.deterministic_record() for c in build.log.certificates]
@@ -178,8 +185,8 @@ def context(build: Build) -> dict:
         "emitted_order": [name for name in EMITTED_ORDER if name in emitted_formulas(build)],
         "basis_sigma": dict(sorted(build.results["meromorphic"].exports["sigma"].items()))
         if "meromorphic" in build.results else {},
-        "scattering_certificates": ", ".join(f"{k} {v}" for k, v in sorted(
-            build.results["scattering"].exports["certificates"].items())) if "scattering" in build.results else "-",
+        "scattering_certificates": _scattering_keys(build),
+        "public_api": public_api.sections(_scattering_keys(build)),
         "integral_ps": [r["p"] for r in build.results["first_integrals"].exports["rows"]]
         if "first_integrals" in build.results else [],
         "basis_ps": [r["p"] for r in build.results["meromorphic"].exports["rows"]]

@@ -15,7 +15,10 @@ What is in this file, and where it comes from (one source of truth per formula):
 * ``_integral_core`` and ``_basis_core``: the shared recipes ``suslov.recipes.integrals``
   and ``suslov.recipes.basis``, the very functions the build runs and certifies in exact
   arithmetic for every p in ``INTEGRAL_PS`` / ``BASIS_PS``;
-* ``INTEGRAL_PS``, ``BASIS_PS``, ``_BASIS_SIGMA``: data from the build.
+* ``INTEGRAL_PS``, ``BASIS_PS``, ``_BASIS_SIGMA``: data from the build;
+* the public functions: thin documented wrappers that call ``suslov.runtime`` (validation,
+  broadcasting, the float and mpmath paths, written once as ordinary modules) with the emitted
+  functions and data above as arguments.
 
 The build imports this file from its staging directory and certifies it before it is
 moved into place (round trip: each emitted function evaluated symbolically equals its
@@ -28,28 +31,22 @@ Importing this module needs NumPy, mpmath and python-flint (no SymPy).
 """
 from __future__ import annotations
 
-import functools
 import json
-import math
-from fractions import Fraction
 from pathlib import Path
-from typing import NamedTuple
 
-import flint  # python-flint ball arithmetic: the float coefficients, scattering_angle_ball
-import mpmath
+import mpmath  # noqa: F401  (the docstring examples use it)
 import numpy as np
 from numpy.typing import ArrayLike
 
-from suslov.kernel import fourier, horner, phase, trig_series
-from suslov.kernel.contexts import ARB, FLOAT, MP
-from suslov.kernel.enclosure import to_arb
-from suslov.kernel.display import Ball, MPValue
-from suslov.kernel.lru import BoundedCache
-from suslov.kernel.frames import canonical_frame, rotation_about_e3
-from suslov.kernel.validate import PREC_RANGE, mp_real, odd_p, precision, rational, real_array, real_scalar
+from suslov.kernel.frames import canonical_frame
 from suslov.recipes import basis as _basis_recipe
 from suslov.recipes import integrals as _integral_recipe
-from suslov.recipes.rings import AcbBasisRing, IntegralRing, homogeneous_coefficients
+from suslov.runtime import angle as _angle
+from suslov.runtime import angular as _angular
+from suslov.runtime import basis as _basis
+from suslov.runtime import bodies as _bodies
+from suslov.runtime import integrals as _integrals
+from suslov.runtime.bodies import Meromorphy, SpecialCase
 
 __all__ = ["PMAX", "INTEGRAL_PS", "BASIS_PS", "omega", "omega_mp", "omega_general", "omega_general_mp",
            "first_integral", "first_integral_mp", "first_integral_coefficients", "gamma_basis", "gamma_basis_mp",
@@ -136,13 +133,20 @@ def _scattering_angle(ctx, x, s, c):
     return 2*ctx.atan2(ctx.sqrt((s*s)*(ctx.sech(x)*ctx.sech(x)) + (ctx.tanh(x)*ctx.tanh(x))), c*ctx.sech(x))
 
 
+# ---------------------------------------------------------------- the shared recipes (certified per p)
+
+
+def _integral_core(p: int, ring):
+    """Fraction-free P1~, M2, M3, K, Den of the first integral (``suslov.recipes.integrals``, certified)."""
+    return _integral_recipe.integral_numerators(p, ring)
+
+
+def _basis_core(p: int, ring):
+    """(gamma^(1), e^{i(p/d)t} V) numerators (``suslov.recipes.basis``, certified for every p in BASIS_PS)."""
+    return _basis_recipe.construct(p, ring)
+
+
 # ---------------------------------------------------------------- angular velocity
-
-
-def _full(values, shape) -> np.ndarray:
-    """A writable float64 array of the broadcast shape (a fresh result is returned as it is)."""
-    values = np.asarray(values, dtype=float)
-    return values if values.shape == shape else np.array(np.broadcast_to(values, shape))
 
 
 def omega(t: ArrayLike, p: ArrayLike, d: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -165,11 +169,7 @@ def omega(t: ArrayLike, p: ArrayLike, d: ArrayLike) -> tuple[np.ndarray, np.ndar
     >>> float(w1[0]), round(float(w1[1]), 12)   # (3/2) tanh 1
     (0.0, 1.142391233934)
     """
-    t, p, d = real_array("t", t), real_array("p", p, nonzero=True), real_array("d", d, positive=True)
-    shape = np.broadcast_shapes(t.shape, p.shape, d.shape)
-    # scalar parameters stay scalars: the emitted k_i are computed once, one array product per term
-    w1, w2 = _omega(FLOAT, t, p, d)
-    return _full(w1, shape), _full(w2, shape)
+    return _angular.omega(_omega, t, p, d)
 
 
 def omega_mp(t, p, d, dps: int = 50) -> tuple:
@@ -182,26 +182,7 @@ def omega_mp(t, p, d, dps: int = 50) -> tuple:
     >>> mpmath.nstr(omega_mp("0.25", 3, "0.5", dps=30)[0], 20)   # 6 tanh(1/4)
     '1.4695119744222547757'
     """
-    dps = precision("dps", dps)
-    with mpmath.workdps(dps):
-        t, p, d = mp_real("t", t), mp_real("p", p, nonzero=True), mp_real("d", d, positive=True)
-        w1, w2 = _omega(MP, t, p, d)
-        return MPValue(+w1, dps), MPValue(+w2, dps)
-
-
-def _tensor_arrays(I11, I22, I13, I23):
-    I11, I22 = real_array("I11", I11, positive=True), real_array("I22", I22, positive=True)
-    I13, I23 = real_array("I13", I13), real_array("I23", I23)
-    both = (I13 == 0) & (I23 == 0)
-    if np.any(both):
-        raise ValueError("I13=0 and I23=0: the constraint axis is a principal axis, every motion is an equilibrium")
-    return I11, I22, I13, I23
-
-
-def _branch(branch) -> int:
-    if isinstance(branch, bool) or branch not in (1, -1):
-        raise ValueError(f"branch={branch!r}: must be +1 or -1 (the sign of r = +-sqrt(I11 I22))")
-    return int(branch)
+    return _angular.omega_mp(_omega, t, p, d, dps)
 
 
 def omega_general(t: ArrayLike, I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, I23: ArrayLike,
@@ -229,59 +210,14 @@ def omega_general(t: ArrayLike, I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, 
     >>> round(float(w1), 12), round(float(w2), 12)   # (I22 I13, I11 I23) sqrt(2)/D at t = 0, D = 0.59
     (0.719091641885, 2.396972139615)
     """
-    t = real_array("t", t)
-    I11, I22, I13, I23 = _tensor_arrays(I11, I22, I13, I23)
-    shape = np.broadcast_shapes(t.shape, I11.shape, I22.shape, I13.shape, I23.shape)
-    r = _branch(branch) * np.sqrt(I11 * I22)
-    w1, w2 = _omega_general(FLOAT, t, I11, I22, I13, I23, r)
-    return _full(w1, shape), _full(w2, shape)
+    return _angular.omega_general(_omega_general, t, I11, I22, I13, I23, branch)
 
 
 def omega_general_mp(t, I11, I22, I13, I23, branch: int = 1, dps: int = 50) -> tuple:
     """mpmath twin of :func:`omega_general` (scalars; strings for exact decimals), at ``dps`` digits."""
-    dps = precision("dps", dps)
-    with mpmath.workdps(dps):
-        t = mp_real("t", t)
-        I11, I22 = mp_real("I11", I11, positive=True), mp_real("I22", I22, positive=True)
-        I13, I23 = mp_real("I13", I13), mp_real("I23", I23)
-        if I13 == 0 and I23 == 0:
-            raise ValueError("I13=0 and I23=0: the constraint axis is a principal axis, every motion is an equilibrium")
-        r = _branch(branch) * mpmath.sqrt(I11 * I22)
-        w1, w2 = _omega_general(MP, t, I11, I22, I13, I23, r)
-        return MPValue(+w1, dps), MPValue(+w2, dps)
-
+    return _angular.omega_general_mp(_omega_general, t, I11, I22, I13, I23, branch, dps)
 
 # ---------------------------------------------------------------- first integrals (shared recipe)
-
-
-def _integral_core(p: int, ring):
-    """Fraction-free P1~, M2, M3, K, Den of the first integral (``suslov.recipes.integrals``, certified)."""
-    return _integral_recipe.integral_numerators(p, ring)
-
-
-def _integral_p(p) -> int:
-    return odd_p(p, INTEGRAL_PS, "even p: the Poisson equations are not Liouville-integrable, no polynomial integral")
-
-
-def _exact_coefficients(p: int, d: Fraction) -> dict:
-    """``{name: [a_k]}`` (fresh lists: callers may keep or change them) from :func:`_cached_coefficients`."""
-    return {name: list(values) for name, values in _cached_coefficients(p, d).items()}
-
-
-@functools.lru_cache(maxsize=256)
-def _cached_coefficients(p: int, d: Fraction) -> dict:
-    # the recipe in python-flint rationals (fmpq), returned as Fractions: Python's Fraction spent its
-    # time in gcds of large integers (0.8 s per d at p = 201, 0.1 s with fmpq); the mpmath twin asks once per point
-    core = _integral_core(p, IntegralRing(flint.fmpq(d.numerator, d.denominator)))
-    if not core.exact:
-        raise ArithmeticError(f"p={p}: omega1 does not divide the numerator of P2 (the certified recipe says it does)")
-    scales = {"P1": core.Den, "P2": core.K**2 * core.Den, "P3": core.K * core.Den}
-    polys = {"P1": core.P1t, "P2": core.M2, "P3": core.M3}
-    out = {}
-    for name in polys:
-        values = (flint.fmpq(v) / flint.fmpq(scales[name]) for v in homogeneous_coefficients(polys[name], p))
-        out[name] = tuple(Fraction(int(v.p), int(v.q)) for v in values)
-    return out
 
 
 def first_integral_coefficients(p: int, d) -> dict:
@@ -296,30 +232,7 @@ def first_integral_coefficients(p: int, d) -> dict:
     >>> first_integral_coefficients(1, "1/2")["P3"]
     [Fraction(0, 1), Fraction(-2, 5)]
     """
-    return _exact_coefficients(_integral_p(p), rational("d", d, positive=True))
-
-
-# per-(p, d) tables kept for repeated calls on one body; bounded so that sweeps over many bodies are not
-CACHE_SIZE = 1024
-_FLOAT_COEFFICIENTS = BoundedCache(CACHE_SIZE)
-
-
-def _float_coefficients(p: int, d: float) -> tuple[np.ndarray, int]:
-    """(3, p+1) coefficients of P1, P2, P3 over 2^E, correctly rounded to float64, and E (cached per (p, d)).
-
-    Exact from the float d; E is the binary exponent of the largest, so every scaled coefficient
-    is at most 1 in modulus and none overflows (they reach 1e340 at p = 201, d = 50) or falls
-    below the normal range unless it is 2^-1000 times smaller than the largest.
-    """
-    key = (p, d)
-    if key not in _FLOAT_COEFFICIENTS:
-        exact = _exact_coefficients(p, Fraction(d))
-        rows = [exact[name] for name in ("P1", "P2", "P3")]
-        top = max((abs(v) for row in rows for v in row), default=Fraction(1)) or Fraction(1)
-        E = top.numerator.bit_length() - top.denominator.bit_length() + 1   # top / 2^E in (1/4, 1)
-        two_E = Fraction(2) ** E
-        _FLOAT_COEFFICIENTS[key] = (np.array([[float(v / two_E) for v in row] for row in rows]), E)
-    return _FLOAT_COEFFICIENTS[key]
+    return _integrals.first_integral_coefficients(_integral_core, INTEGRAL_PS, p, d)
 
 
 def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, gamma1: ArrayLike,
@@ -348,31 +261,7 @@ def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, g
     >>> round(float(first_integral(3, 0.5, w1, w2, 1.0, 0.0, 0.0)), 6)   # P1 = w1 (F1 + c1 w2^2), F1 = 45
     70.872832
     """
-    p = _integral_p(p)
-    names = ("d", "omega1", "omega2", "gamma1", "gamma2", "gamma3")
-    d, w1, w2, g1, g2, g3 = np.broadcast_arrays(
-        *(real_array(n, v, positive=(n == "d")) for n, v in zip(names, (d, omega1, omega2, gamma1, gamma2, gamma3))))
-    shape = d.shape
-    d, w1, w2 = d.ravel(), w1.ravel(), w2.ravel()
-    g = np.stack([g1.ravel(), g2.ravel(), g3.ravel()])
-    s = np.maximum(np.abs(w1), np.abs(w2))
-    # s^p as m^p 2^(p e), m in [1/2, 1): m^p >= 2^-p is a normal float for every certified p, so
-    # neither s^p nor the coefficients' scale 2^E over- or underflows before the one final ldexp
-    mantissa, exponent = np.frexp(s)
-    value = np.empty(d.shape)
-    single = d.size and np.all(d == d[0])
-    for dv in ((d[0],) if single else np.unique(d)):
-        mask = slice(None) if single else d == dv
-        coefficients, E = _float_coefficients(p, float(dv))
-        value[mask] = horner.combination(coefficients, w1[mask], w2[mask], g[:, mask]) * mantissa[mask] ** p
-        exponents = p * exponent[mask].astype(np.int64) + E
-        with np.errstate(over="ignore"):   # an overflow is reported below, with its point
-            value[mask] = np.ldexp(value[mask], np.clip(exponents, -4000, 4000))   # beyond +-4000: 0 or inf anyway
-    if not np.all(np.isfinite(value)):
-        where = int(np.flatnonzero(~np.isfinite(value))[0])
-        point = f"p={p}, d={float(d[where])!r}, omega=({float(w1[where])!r}, {float(w2[where])!r})"
-        raise ValueError(f"first_integral overflows float64 at {point}: |F3| beyond 1.8e308; use first_integral_mp")
-    return value.reshape(shape)
+    return _integrals.first_integral(_integral_core, INTEGRAL_PS, p, d, omega1, omega2, gamma1, gamma2, gamma3)
 
 
 def first_integral_mp(p: int, d, omega1, omega2, gamma1, gamma2, gamma3, dps: int = 50):
@@ -381,156 +270,10 @@ def first_integral_mp(p: int, d, omega1, omega2, gamma1, gamma2, gamma3, dps: in
     >>> mpmath.nstr(first_integral_mp(1, "0.5", 1, 2, "0.6", "0.8", 0, dps=30), 25)   # w1 g1 + w2 g2/(d^2+1)
     '1.88'
     """
-    dps = precision("dps", dps)
-    p = _integral_p(p)
-    exact = _exact_coefficients(p, rational("d", d, positive=True))
-    with mpmath.workdps(dps):
-        w1, w2, g1, g2, g3 = (mp_real(n, v) for n, v in zip(("omega1", "omega2", "gamma1", "gamma2", "gamma3"),
-                                                          (omega1, omega2, gamma1, gamma2, gamma3)))
-        total = mpmath.mpf(0)
-        for name, g in zip(("P1", "P2", "P3"), (g1, g2, g3)):
-            total += g * mpmath.fsum(mpmath.mpf(a.numerator) / a.denominator * w1 ** (p - k) * w2**k
-                                     for k, a in enumerate(exact[name]))
-        return MPValue(+total, dps)
-
+    return _integrals.first_integral_mp(_integral_core, INTEGRAL_PS, p, d, omega1, omega2, gamma1, gamma2, gamma3,
+                                       dps)
 
 # ---------------------------------------------------------------- the orthonormal basis (shared recipe)
-
-
-def _basis_core(p: int, ring):
-    """(gamma^(1), e^{i(p/d)t} V) numerators (``suslov.recipes.basis``, certified for every p in BASIS_PS)."""
-    return _basis_recipe.construct(p, ring)
-
-
-def _basis_p(p) -> int:
-    return odd_p(p, BASIS_PS, "closed-form meromorphic solutions exist for odd p only")
-
-
-def _arb_of(value) -> "flint.arb":
-    """A ball containing a float or an mpf exactly (the precision set holds its mantissa).
-
-    An mpf is read from its raw mantissa and exponent: ``mpmath.mpf(value)`` would round it to
-    mpmath's current precision, which is the caller's, not the ``dps`` asked for.
-    """
-    if isinstance(value, mpmath.mpf):
-        man, exp = value.man_exp
-        return flint.arb(int(man)) * flint.arb(2) ** int(exp)
-    exact = Fraction(float(value))
-    return flint.arb(flint.fmpq(exact.numerator, exact.denominator))
-
-
-def _series_balls(p: int, d, radius: mpmath.mpf, bits: int):
-    """Ball coefficients of the basis rows' trigonometric series, every radius <= ``radius``.
-
-    The recipe and the Fourier products run in python-flint ball arithmetic from the exact
-    binary d; the precision (``bits`` to start, the alternating sums lose about 3p digits)
-    is doubled until every ball is that narrow, so each midpoint is within ``radius`` of
-    the exact coefficient: a rigorous bound, with no second run at a higher precision.
-    Returns (alpha, beta) as ``acb_mat``, rows gamma^(1)_1..3 then G_1..3 (V scaled), columns k = 0..p.
-    """
-    saved = flint.ctx.prec
-    try:
-        while True:
-            flint.ctx.prec = bits
-            ring = AcbBasisRing(_arb_of(d))
-            c = (ring.d**2 + 1).sqrt()
-            real, cplx = _basis_core(p, ring)
-            real_lists = [m.coeffs() for m in real.M]
-            complex_lists = [m.coeffs() for m in cplx.M]
-            s, k = -real_lists[0][0], complex_lists[1][0]  # certified: gamma1 -> -1 and V2 -> 1 at x = 0
-            rows = [[v / (f * s) for v in comp] for comp, f in zip(real_lists, (1, c, c))]
-            rows += [[f * v / k for v in comp] for comp, f in zip(complex_lists, (c, 1, 1))]
-            alpha, beta = fourier.to_fourier_acb(rows, p)
-            # compared as mpf: a float radius such as 10^-(dps+10) would underflow to 0 beyond dps ~ 300
-            parts = (part for m in (alpha, beta) for v in m.entries() for part in (v.real, v.imag))
-            if all(_mpf_of(part.rad()) <= radius for part in parts):
-                return alpha, beta
-            bits *= 2
-    finally:
-        flint.ctx.prec = saved
-
-
-def _series_midpoints(p: int, d, radius: mpmath.mpf, bits: int, convert) -> list:
-    """``convert``-ed ball midpoints, nested [row][component][re/im][cos/sin][k] (row 0: gamma^(1), 1: G)."""
-    alpha, beta = _series_balls(p, d, radius, bits)
-    return [[[[[convert(getattr(matrix[3 * row + comp, k], part).mid()) for k in range(p + 1)]
-               for matrix in (alpha, beta)] for part in ("real", "imag")] for comp in range(3)] for row in range(2)]
-
-
-def _mpf_of(exact) -> mpmath.mpf:
-    """An arb with radius 0 (a ball's midpoint or radius) as the same binary number in mpmath, exactly
-    (``make_mpf``: ``mpmath.mpf((man, exp))`` would round to mpmath's current precision)."""
-    man, exp = exact.man_exp()
-    return mpmath.mp.make_mpf(mpmath.libmp.from_man_exp(int(man), int(exp)))
-
-
-_SERIES = BoundedCache(CACHE_SIZE)
-
-
-def _basis_series(p: int, d, dps: int) -> list:
-    """mpf coefficients within 10^-(dps+10) of the exact ones (:func:`_series_balls`), cached per (p, d, dps)."""
-    key = (p, d._mpf_, dps)   # the raw value: two d that agree to the caller's precision are still two d
-    if key not in _SERIES:
-        radius = mpmath.mpf(10) ** -(dps + 10)
-        _SERIES[key] = _series_midpoints(p, d, radius, int(3.33 * (dps + 10)) + 12 * p, _mpf_of)
-    return _SERIES[key]
-
-
-_SERIES_FLOAT = BoundedCache(CACHE_SIZE)
-
-
-def _series_float(p: int, d: float) -> np.ndarray:
-    """float64 coefficients (shape (2, 3, 2, 2, p+1): row, component, re/im, cos/sin, k), cached per (p, d).
-
-    Each is its ball's midpoint with radius <= 1e-17 (:func:`_series_balls`, from 64 + 12p bits),
-    so within 1e-17 + half an ulp of the exact value (a rigorous bound).
-    """
-    key = (p, d)
-    if key not in _SERIES_FLOAT:
-        _SERIES_FLOAT[key] = np.array(_series_midpoints(p, d, mpmath.mpf(1e-17), 64 + 12 * p, float))
-    return _SERIES_FLOAT[key]
-
-
-def _careful_phase(p: int, d: float, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """cos, sin of (p/d) t in mpmath with enough digits for any |phase| (used beyond phase.PHASE_LIMIT)."""
-    cos_out, sin_out = np.empty(t.shape), np.empty(t.shape)
-    for index, tv in np.ndenumerate(t):
-        size = abs(p * tv / d)
-        with mpmath.workdps(30 + int(math.log10(size + 1))):
-            angle = mpmath.mpf(p) * mpmath.mpf(float(tv)) / mpmath.mpf(d)
-            cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))
-    return cos_out, sin_out
-
-
-_SERIES_MATRIX = BoundedCache(CACHE_SIZE)
-
-
-def _series_matrix(p: int, d: float) -> np.ndarray:
-    """(2(p+1), 9) coefficients for trig_series: gamma^(1) (3 columns), Re V (3), Im V (3)."""
-    key = (p, d)
-    if key not in _SERIES_MATRIX:
-        c = _series_float(p, d)
-        columns = [c[0, j, 0] for j in range(3)] + [c[1, j, 0] for j in range(3)] + [c[1, j, 1] for j in range(3)]
-        _SERIES_MATRIX[key] = np.ascontiguousarray(np.stack([np.concatenate(col) for col in columns], axis=1))
-    return _SERIES_MATRIX[key]
-
-
-def _gamma_basis_one_d(t: np.ndarray, p: int, d: float) -> np.ndarray:
-    t = np.ravel(t)
-    T, S = FLOAT.tanh_sech(t)
-    values = trig_series.evaluate(T, S, _series_matrix(p, d))  # rows: gamma^(1) (3), Re V (3), Im V (3)
-    cphi, sphi = phase.phase_cos_sin(p, d, t)
-    if t.size and np.max(np.abs(t)) * (p / d) >= phase.PHASE_LIMIT:
-        far = np.abs(p * t / d) >= phase.PHASE_LIMIT
-        cphi[far], sphi[far] = _careful_phase(p, d, t[far])
-    out = np.empty((t.size, 3, 3))
-    sign = -_BASIS_SIGMA[p]
-    for j in range(3):
-        re, im = values[3 + j], values[6 + j]
-        out[:, 0, j] = values[j]
-        out[:, 1, j] = cphi * re - sphi * im
-        out[:, 2, j] = sign * (sphi * re + cphi * im)
-    return out
 
 
 def gamma_basis(t: ArrayLike, p: int, d: ArrayLike) -> np.ndarray:
@@ -559,15 +302,7 @@ def gamma_basis(t: ArrayLike, p: int, d: ArrayLike) -> np.ndarray:
     >>> [round(float(v), 12) for v in B[:, 0, 0]]
     [-1.0, 0.0, 1.0]
     """
-    p = _basis_p(p)
-    t, d = np.broadcast_arrays(real_array("t", t), real_array("d", d, positive=True))
-    out = np.empty(t.shape + (3, 3))
-    if d.size == 1 or np.all(d == d.flat[0]):
-        return _gamma_basis_one_d(t, p, float(d.flat[0])).reshape(t.shape + (3, 3))
-    for dv in np.unique(d):
-        mask = d == dv
-        out[mask] = _gamma_basis_one_d(t[mask], p, float(dv))
-    return out
+    return _basis.gamma_basis(_basis_core, _BASIS_SIGMA, BASIS_PS, t, p, d)
 
 
 def gamma_basis_mp(t, p: int, d, dps: int = 50):
@@ -583,34 +318,7 @@ def gamma_basis_mp(t, p: int, d, dps: int = 50):
     >>> mpmath.nstr(mpmath.det(M), 25), bool(abs(M[0, 0] - math.tanh(0.3)) < 1e-15)   # a rotation; gamma1 = tanh t
     ('1.0', True)
     """
-    dps = precision("dps", dps)
-    p = _basis_p(p)
-    with mpmath.workdps(dps):
-        t = mp_real("t", t)
-        d = mp_real("d", d, positive=True)
-    rows = _basis_series(p, d, max(dps, 40))
-    sigma = _BASIS_SIGMA[p]
-    with mpmath.workdps(dps + 10):
-        th = 2 * mpmath.atan(mpmath.exp(-t))
-        # cos k th, sin k th once for the 15 series of this call (each was recomputing them)
-        cosines = [mpmath.cos(k * th) for k in range(p + 1)]
-        sines = [mpmath.sin(k * th) for k in range(p + 1)]
-
-        def series(part):
-            alpha, beta = part
-            return mpmath.fsum(alpha[k] * cosines[k] + beta[k] * sines[k] for k in range(p + 1))
-
-        out = mpmath.matrix(3, 3)
-        phase_mp = p * t / d
-        cphi, sphi = mpmath.cos(phase_mp), mpmath.sin(phase_mp)
-        for j in range(3):
-            out[0, j] = series(rows[0][j][0])
-            re, im = series(rows[1][j][0]), series(rows[1][j][1])
-            out[1, j] = cphi * re - sphi * im
-            out[2, j] = -sigma * (sphi * re + cphi * im)
-    with mpmath.workdps(dps):
-        return +out
-
+    return _basis.gamma_basis_mp(_basis_core, _BASIS_SIGMA, BASIS_PS, t, p, d, dps)
 
 # ---------------------------------------------------------------- scattering angle (Theorem 5.2)
 
@@ -636,11 +344,7 @@ def scattering_angle(p: ArrayLike, d: ArrayLike) -> np.ndarray:
     >>> round(float(scattering_angle(2.0, 1.0)), 12)   # 2 arccos(1/cosh(pi))
     2.968844459491
     """
-    p, d = np.broadcast_arrays(real_array("p", p), real_array("d", d, positive=True))
-    s, c = phase.half_pi_parts(p)
-    x = np.pi * np.abs(p) / (2.0 * d)
-    with np.errstate(under="ignore", over="ignore"):
-        return np.asarray(_scattering_angle(FLOAT, x, s, c), dtype=float)
+    return _angle.scattering_angle(_scattering_angle, p, d)
 
 
 def scattering_angle_mp(p, d, dps: int = 50):
@@ -649,13 +353,7 @@ def scattering_angle_mp(p, d, dps: int = 50):
     >>> mpmath.nstr(scattering_angle_mp(1, "0.7", dps=30), 25)   # odd p: pi
     '3.141592653589793238462643'
     """
-    dps = precision("dps", dps)
-    with mpmath.workdps(dps + 10):
-        p, d = mp_real("p", p), mp_real("d", d, positive=True)
-        s, c = abs(mpmath.sinpi(p / 2)), abs(mpmath.cospi(p / 2))
-        out = _scattering_angle(MP, mpmath.pi * abs(p) / (2 * d), s, c)
-    with mpmath.workdps(dps):
-        return MPValue(+out, dps)
+    return _angle.scattering_angle_mp(_scattering_angle, p, d, dps)
 
 
 def scattering_angle_ball(p, d, prec: int = 128):
@@ -671,28 +369,9 @@ def scattering_angle_ball(p, d, prec: int = 128):
     >>> ball.rad() < 1e-28, round(float(ball.mid()), 12)
     (True, 2.968844459491)
     """
-    prec = precision("prec", prec, PREC_RANGE, "bits")
-    saved = flint.ctx.prec
-    flint.ctx.prec = prec + 20
-    try:
-        p, d = to_arb("p", p), to_arb("d", d)
-        if not d > 0:
-            raise ValueError(f"d={d}: must be positive")
-        s, c = abs((p / 2).sin_pi()), abs((p / 2).cos_pi())
-        return Ball(_scattering_angle(ARB, flint.arb.pi() * abs(p) / (2 * d), s, c))
-    finally:
-        flint.ctx.prec = saved
-
+    return _angle.scattering_angle_ball(_scattering_angle, p, d, prec)
 
 # ---------------------------------------------------------------- numeric inertia tensors
-
-
-class SpecialCase(NamedTuple):
-    """(p, d, frame) of a body with I13 = 0; see :func:`special_case_parameters`."""
-
-    p: float
-    d: float
-    frame: np.ndarray
 
 
 def special_case_parameters(I: ArrayLike, tol: float = 1e-9) -> SpecialCase:
@@ -709,17 +388,7 @@ def special_case_parameters(I: ArrayLike, tol: float = 1e-9) -> SpecialCase:
     >>> round(p, 12), round(d, 12)
     (2.0, 1.0)
     """
-    tol = real_scalar("tol", tol, positive=True)
-    R, (I11, I22, I13, I23) = canonical_frame(I)
-    size = max(abs(I11), abs(I22), abs(I13), abs(I23))
-    if abs(I13) > tol * size:
-        raise ValueError(f"I13 = {I13:.6g} in the paper's frame (I12 = 0, I11 >= I22): not the case I13 = 0")
-    if I11 - I22 <= tol * size:
-        raise ValueError("I11 = I22 in the paper's frame: d = 0, the special case needs I11 > I22")
-    if I23 > 0:  # turning by pi about e3 flips I13 and I23
-        R, I23 = R @ rotation_about_e3(math.pi), -I23
-    p, d = _special_parameters(FLOAT, I11, I22, I23)
-    return SpecialCase(float(p), float(d), R)
+    return _bodies.special_case_parameters(_special_parameters, I, tol)
 
 
 def kovalevskaya_exponents(I: ArrayLike) -> np.ndarray:
@@ -735,18 +404,7 @@ def kovalevskaya_exponents(I: ArrayLike) -> np.ndarray:
     >>> np.round(kovalevskaya_exponents([[2.0, 0, 0], [0, 1.0, 0.5], [0, 0.5, 1.5]]).real, 9)
     array([-1.,  1.,  2.,  3., -1.])
     """
-    re, im = _lambda_squared(FLOAT, *canonical_frame(I)[1])
-    lam = np.sqrt(complex(re, im))
-    return np.array([-1, 1, 2, 1 + lam, 1 - lam], dtype=complex)
-
-
-class Meromorphy(NamedTuple):
-    """(case, p_squared, p, odd); see :func:`meromorphy`."""
-
-    case: str
-    p_squared: float | complex
-    p: float | None
-    odd: bool
+    return _bodies.kovalevskaya_exponents(_lambda_squared, I)
 
 
 def meromorphy(I: ArrayLike, tol: float = 1e-9) -> Meromorphy:
@@ -766,18 +424,7 @@ def meromorphy(I: ArrayLike, tol: float = 1e-9) -> Meromorphy:
     >>> meromorphy([[2.0, 0, 0], [0, 1.0, 0.5], [0, 0.5, 1.5]]).case
     'I13=0'
     """
-    tol = real_scalar("tol", tol, positive=True)
-    I11, I22, I13, I23 = canonical_frame(I)[1]
-    size = max(abs(I11), abs(I22), abs(I13), abs(I23))
-    if abs(I13) <= tol * size:
-        case, p2 = "I13=0", float(_p_squared_i13_zero(FLOAT, I11, I22, I23))
-    elif abs(I23) <= tol * size:
-        case, p2 = "I23=0", float(_p_squared_i23_zero(FLOAT, I11, I22, I13))
-    else:
-        case, p2 = "neither", complex(*_lambda_squared(FLOAT, I11, I22, I13, I23))
-    p = math.sqrt(p2) if isinstance(p2, float) and p2 >= 0 else None
-    odd = p is not None and abs(p - round(p)) <= tol * max(1.0, p) and round(p) % 2 == 1
-    return Meromorphy(case, p2, p, odd)
+    return _bodies.meromorphy(_lambda_squared, _p_squared_i13_zero, _p_squared_i23_zero, I, tol)
 
 
 def load_certificates() -> dict:

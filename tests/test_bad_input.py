@@ -108,9 +108,11 @@ def test_per_d_caches_are_bounded():
     for i in range(10):
         cache[i] = i
     assert sorted(cache.keys()) == [7, 8, 9]
-    for i in range(2 * sf.CACHE_SIZE + 5):
+    from suslov.runtime import basis, integrals
+
+    for i in range(2 * integrals.CACHE_SIZE + 5):
         sf.gamma_basis(0.1, 1, 0.5 + i * 1e-6)
-    assert len(sf._SERIES_FLOAT) <= sf.CACHE_SIZE and len(sf._SERIES_MATRIX) <= sf.CACHE_SIZE
+    assert len(basis._SERIES_FLOAT) <= integrals.CACHE_SIZE and len(basis._SERIES_MATRIX) <= integrals.CACHE_SIZE
 
 
 def test_large_sweep_needs_confirmation(tmp_path, capsys):

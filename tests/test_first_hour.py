@@ -4,7 +4,6 @@ The out-of-range message is followed literally: the code it names is executed as
 must end with a certified module for p = 21 and an unchanged ``git status`` of the checkout.
 """
 import os
-import re
 import subprocess
 import sys
 

@@ -17,31 +17,72 @@ from derivations.pipeline import GENERATED, ROOT
 from derivations.roundtrip import load_module, verify
 
 MUTATIONS = [
-    # (function named in the message, original text, mutated text)
+    # faults in the emitted formulas of the generated module: (function named in the message, original, mutated)
     ("_omega", "k1 = -c*p/d", "k1 = c*p/d"),
     ("_omega_general", "k3 = I11*I23*r/(I11*(I23*I23) + (I13*I13)*I22)", "k3 = I11*I23*r/(I11*(I23*I23) + (I13*I13*I13)*I22)"),
     ("_lambda_squared", "return (I11*I22*(I11 - I22)*", "return (I11*I22*(I11 + I22)*"),
     ("_p_squared_i23_zero", "return -I11*(I11 - I22)/(I13*I13)", "return I11*(I11 - I22)/(I13*I13)"),
     ("_special_parameters", "return (-I22*d/I23, d)", "return (-I22*d/I23, d*d)"),
     ("_scattering_angle", "c*ctx.sech(x))", "c*ctx.sech(2*x))"),
-    ("first_integral", '"P2": core.K**2 * core.Den', '"P2": core.K * core.Den'),
-    ("special_case_parameters", "if I23 > 0:", "if I23 < 0:"),
-    ("gamma_basis", "sign = -_BASIS_SIGMA[p]", "sign = _BASIS_SIGMA[p]"),
-    # shared by the float path and the mp twin, and still a rotation: only the exact evaluation sees it
-    ("gamma_basis_mp", "rows += [[f * v / k for v in comp]", "rows += [[f * v / k.conjugate() for v in comp]"),
-    # the coefficients rounded to the caller's precision instead of dps: off by 1e-17, seen only at high dps
-    ("gamma_basis_mp", "return mpmath.mp.make_mpf(mpmath.libmp.from_man_exp(int(man), int(exp)))",
-     "return mpmath.mpf((int(man), int(exp)))"),
-    ("meromorphy", 'case, p2 = "I23=0", float(_p_squared_i23_zero(FLOAT, I11, I22, I13))',
-     'case, p2 = "I23=0", float(_p_squared_i13_zero(FLOAT, I11, I22, I13))'),
-    # issue 27, finding 9: the careful phase beyond the double-double range (|p t/d| >= 5.3e7)
-    ("gamma_basis", "cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))",
-     "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))"),
-    ("gamma_basis", "with mpmath.workdps(30 + int(math.log10(size + 1))):", "with mpmath.workdps(15):"),
-    # finding 10: the fifth exponent, and the odd-p test of meromorphy
-    ("kovalevskaya_exponents", "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]"),
-    ("meromorphy", "round(p) % 2 == 1", "round(p) % 2 == 0"),
+    # the thin public functions themselves (what they pass to suslov.runtime)
+    ("gamma_basis", "_basis.gamma_basis(_basis_core, _BASIS_SIGMA, BASIS_PS, t, p, d)",
+     "_basis.gamma_basis(_basis_core, {p: -s for p, s in _BASIS_SIGMA.items()}, BASIS_PS, t, p, d)"),
 ]
+
+# faults in the modules the public functions call (suslov/runtime): (name in the message, file, original, mutated)
+RUNTIME_MUTATIONS = [
+    ("first_integral", "integrals.py", '"P2": numerators.K**2 * numerators.Den', '"P2": numerators.K * numerators.Den'),
+    ("special_case_parameters", "bodies.py", "if I23 > 0:", "if I23 < 0:"),
+    ("gamma_basis", "basis.py", "sign = -sigma[p]", "sign = sigma[p]"),
+    # shared by the float path and the mp twin, and still a rotation: only the exact evaluation sees it
+    ("gamma_basis_mp", "basis.py", "rows += [[f * v / k for v in comp]", "rows += [[f * v / k.conjugate() for v in comp]"),
+    # the coefficients rounded to the caller's precision instead of dps: off by 1e-17, seen only at high dps
+    ("gamma_basis_mp", "basis.py", "return mpmath.mp.make_mpf(mpmath.libmp.from_man_exp(int(man), int(exp)))",
+     "return mpmath.mpf((int(man), int(exp)))"),
+    ("meromorphy", "bodies.py", 'case, p2 = "I23=0", float(p_squared_i23_zero(FLOAT, I11, I22, I13))',
+     'case, p2 = "I23=0", float(p_squared_i13_zero(FLOAT, I11, I22, I13))'),
+    # issue 27, finding 9: the careful phase beyond the double-double range (|p t/d| >= 5.3e7)
+    ("gamma_basis", "basis.py", "cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))",
+     "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))"),
+    ("gamma_basis", "basis.py", "with mpmath.workdps(30 + int(math.log10(size + 1))):", "with mpmath.workdps(15):"),
+    # finding 10: the fifth exponent, and the odd-p test of meromorphy
+    ("kovalevskaya_exponents", "bodies.py", "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]"),
+    ("meromorphy", "bodies.py", "round(p) % 2 == 1", "round(p) % 2 == 0"),
+    ("omega", "angular.py", "    w1, w2 = emitted(FLOAT, t, p, d)\n    return full(w1, shape), full(w2, shape)",
+     "    w1, w2 = emitted(FLOAT, t, p, d)\n    return full(w1, shape), full(-w2, shape)"),
+    ("scattering_angle", "angle.py", "x = np.pi * np.abs(p) / (2.0 * d)", "x = np.pi * np.abs(p) / (2.0 * d) * (1 + 1e-12)"),
+    ("first_integral", "integrals.py", "value[mask] = horner.combination(coefficients, w1[mask], w2[mask], g[:, mask]) * "
+     "mantissa[mask] ** p", "value[mask] = horner.combination(coefficients, w2[mask], w1[mask], g[:, mask]) * "
+     "mantissa[mask] ** p"),
+]
+
+
+def mutated_runtime(monkeypatch, filename, original, mutated):
+    """Replace ``suslov.runtime.<module>`` by a copy with one fault, for every import made from now on."""
+    import importlib
+    import types
+
+    import suslov.runtime
+
+    name = f"suslov.runtime.{filename[:-3]}"
+    path = ROOT / "suslov" / "runtime" / filename
+    text = path.read_text(encoding="utf-8")
+    assert text.count(original) == 1, f"mutation site not unique: {original!r}"
+    module = types.ModuleType(name)
+    module.__file__, module.__package__ = str(path), "suslov.runtime"
+    exec(compile(text.replace(original, mutated), str(path), "exec"), module.__dict__)
+    importlib.import_module(name)   # the real one is loaded, so the patch below is what later imports see
+    monkeypatch.setitem(sys.modules, name, module)
+    monkeypatch.setattr(suslov.runtime, filename[:-3], module)
+
+
+@pytest.mark.parametrize("name, filename, original, mutated", RUNTIME_MUTATIONS,
+                         ids=[f"{m[1][:-3]}-{m[0]}-{i}" for i, m in enumerate(RUNTIME_MUTATIONS)])
+def test_each_runtime_mutation_is_rejected_and_named(default_build, monkeypatch, name, filename, original, mutated):
+    mutated_runtime(monkeypatch, filename, original, mutated)
+    problem = verify(default_build, GENERATED)
+    assert problem is not None, f"mutation in suslov/runtime/{filename} passed the round trip"
+    assert name in problem
 
 
 def mutated_copy(tmp_path, original, mutated):

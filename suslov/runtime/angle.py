@@ -1,0 +1,52 @@
+"""The scattering angle of Theorem 5.2 (corrected) in float64, mpmath and ball arithmetic.
+
+``emitted`` is the generated module's ``_scattering_angle(ctx, x, s, c)`` with ``x = pi |p|/(2d)`` and
+``s``, ``c`` = ``|sin|``, ``|cos|`` of ``pi p/2``; here the exact reduction of pi p/2
+(``suslov.kernel.phase.half_pi_parts``: p within 1e-12 of an integer keeps full relative accuracy),
+the precision handling of the twins, and results that print the digits they carry.
+"""
+from __future__ import annotations
+
+import flint
+import mpmath
+import numpy as np
+
+from suslov.kernel import phase
+from suslov.kernel.contexts import ARB, FLOAT, MP
+from suslov.kernel.display import Ball, MPValue
+from suslov.kernel.enclosure import to_arb
+from suslov.kernel.validate import PREC_RANGE, mp_real, precision, real_array
+
+__all__ = ["scattering_angle", "scattering_angle_mp", "scattering_angle_ball"]
+
+
+def scattering_angle(emitted, p, d) -> np.ndarray:
+    p, d = np.broadcast_arrays(real_array("p", p), real_array("d", d, positive=True))
+    s, c = phase.half_pi_parts(p)
+    x = np.pi * np.abs(p) / (2.0 * d)
+    with np.errstate(under="ignore", over="ignore"):
+        return np.asarray(emitted(FLOAT, x, s, c), dtype=float)
+
+
+def scattering_angle_mp(emitted, p, d, dps):
+    dps = precision("dps", dps)
+    with mpmath.workdps(dps + 10):
+        p, d = mp_real("p", p), mp_real("d", d, positive=True)
+        s, c = abs(mpmath.sinpi(p / 2)), abs(mpmath.cospi(p / 2))
+        out = emitted(MP, mpmath.pi * abs(p) / (2 * d), s, c)
+    with mpmath.workdps(dps):
+        return MPValue(+out, dps)
+
+
+def scattering_angle_ball(emitted, p, d, prec) -> Ball:
+    prec = precision("prec", prec, PREC_RANGE, "bits")
+    saved = flint.ctx.prec
+    flint.ctx.prec = prec + 20
+    try:
+        p, d = to_arb("p", p), to_arb("d", d)
+        if not d > 0:
+            raise ValueError(f"d={d}: must be positive")
+        s, c = abs((p / 2).sin_pi()), abs((p / 2).cos_pi())
+        return Ball(emitted(ARB, flint.arb.pi() * abs(p) / (2 * d), s, c))
+    finally:
+        flint.ctx.prec = saved

@@ -1,0 +1,199 @@
+"""The real orthonormal basis of Poisson solutions for odd p (Theorem 6.1, corrected; ``eq:gam3``, ``asymp``).
+
+``core`` is the generated module's ``_basis_core`` (the shared recipe ``suslov.recipes.basis``,
+certified for every p in ``BASIS_PS``) and ``sigma`` its ``_BASIS_SIGMA``.  Method:
+
+1. *Ball series.*  The recipe runs in python-flint ball arithmetic from the exact binary d; the
+   numerators are normalised by their certified limits at x = 0 and converted to trigonometric
+   polynomials in th = 2 arctan(e^-t) (``suslov.kernel.fourier``); the precision is doubled until
+   every ball is narrower than the radius asked for, so each midpoint is within it of the exact
+   coefficient (a rigorous bound).
+2. *Float path.*  Midpoints within 1e-17, evaluated by ``suslov.kernel.trig_series``; the phase
+   (p/d) t reduced in double-double arithmetic (``suslov.kernel.phase``) below ``PHASE_LIMIT`` and
+   in mpmath with 30 + log10|phase| digits beyond (:func:`careful_phase`).
+3. *mp twin.*  Midpoints within 10^-(dps+10), summed in mpmath at dps + 10 digits.
+"""
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+
+import flint
+import mpmath
+import numpy as np
+
+from suslov.kernel import fourier, phase, trig_series
+from suslov.kernel.contexts import FLOAT
+from suslov.kernel.lru import BoundedCache
+from suslov.kernel.validate import mp_real, odd_p, precision, real_array
+from suslov.recipes.rings import AcbBasisRing
+
+from .integrals import CACHE_SIZE
+
+__all__ = ["basis_p", "series_float", "careful_phase", "gamma_basis", "gamma_basis_mp"]
+
+WHY_ODD = "closed-form meromorphic solutions exist for odd p only"
+_SERIES = BoundedCache(CACHE_SIZE)
+_SERIES_FLOAT = BoundedCache(CACHE_SIZE)
+_SERIES_MATRIX = BoundedCache(CACHE_SIZE)
+
+
+def basis_p(p, ps) -> int:
+    return odd_p(p, ps, WHY_ODD)
+
+
+def _arb_of(value) -> "flint.arb":
+    """A ball containing a float or an mpf exactly (the precision set holds its mantissa).
+
+    An mpf is read from its raw mantissa and exponent: ``mpmath.mpf(value)`` would round it to
+    mpmath's current precision, which is the caller's, not the ``dps`` asked for.
+    """
+    if isinstance(value, mpmath.mpf):
+        man, exp = value.man_exp
+        return flint.arb(int(man)) * flint.arb(2) ** int(exp)
+    exact = Fraction(float(value))
+    return flint.arb(flint.fmpq(exact.numerator, exact.denominator))
+
+
+def _mpf_of(exact) -> mpmath.mpf:
+    """An arb with radius 0 (a ball's midpoint or radius) as the same binary number in mpmath, exactly
+    (``make_mpf``: ``mpmath.mpf((man, exp))`` would round to mpmath's current precision)."""
+    man, exp = exact.man_exp()
+    return mpmath.mp.make_mpf(mpmath.libmp.from_man_exp(int(man), int(exp)))
+
+
+def series_balls(core, p: int, d, radius: mpmath.mpf, bits: int):
+    """Ball coefficients of the basis rows' trigonometric series, every radius <= ``radius``.
+
+    Returns (alpha, beta) as ``acb_mat``, rows gamma^(1)_1..3 then G_1..3 (V scaled), columns k = 0..p.
+    """
+    saved = flint.ctx.prec
+    try:
+        while True:
+            flint.ctx.prec = bits
+            ring = AcbBasisRing(_arb_of(d))
+            c = (ring.d**2 + 1).sqrt()
+            real, cplx = core(p, ring)
+            real_lists = [m.coeffs() for m in real.M]
+            complex_lists = [m.coeffs() for m in cplx.M]
+            s, k = -real_lists[0][0], complex_lists[1][0]  # certified: gamma1 -> -1 and V2 -> 1 at x = 0
+            rows = [[v / (f * s) for v in comp] for comp, f in zip(real_lists, (1, c, c))]
+            rows += [[f * v / k for v in comp] for comp, f in zip(complex_lists, (c, 1, 1))]
+            alpha, beta = fourier.to_fourier_acb(rows, p)
+            # compared as mpf: a float radius such as 10^-(dps+10) would underflow to 0 beyond dps ~ 300
+            parts = (part for m in (alpha, beta) for v in m.entries() for part in (v.real, v.imag))
+            if all(_mpf_of(part.rad()) <= radius for part in parts):
+                return alpha, beta
+            bits *= 2
+    finally:
+        flint.ctx.prec = saved
+
+
+def _series_midpoints(core, p: int, d, radius: mpmath.mpf, bits: int, convert) -> list:
+    """``convert``-ed ball midpoints, nested [row][component][re/im][cos/sin][k] (row 0: gamma^(1), 1: G)."""
+    alpha, beta = series_balls(core, p, d, radius, bits)
+    return [[[[[convert(getattr(matrix[3 * row + comp, k], part).mid()) for k in range(p + 1)]
+               for matrix in (alpha, beta)] for part in ("real", "imag")] for comp in range(3)] for row in range(2)]
+
+
+def _series_mp(core, p: int, d, dps: int) -> list:
+    """mpf coefficients within 10^-(dps+10) of the exact ones, cached per (p, d, dps)."""
+    key = (core, p, d._mpf_, dps)   # the raw value: two d that agree to the caller's precision are still two d
+    if key not in _SERIES:
+        radius = mpmath.mpf(10) ** -(dps + 10)
+        _SERIES[key] = _series_midpoints(core, p, d, radius, int(3.33 * (dps + 10)) + 12 * p, _mpf_of)
+    return _SERIES[key]
+
+
+def series_float(core, p: int, d: float) -> np.ndarray:
+    """float64 coefficients (shape (2, 3, 2, 2, p+1): row, component, re/im, cos/sin, k), cached per (p, d).
+
+    Each is its ball's midpoint with radius <= 1e-17 (from 64 + 12p bits), so within 1e-17 + half an
+    ulp of the exact value (a rigorous bound).
+    """
+    key = (core, p, d)
+    if key not in _SERIES_FLOAT:
+        _SERIES_FLOAT[key] = np.array(_series_midpoints(core, p, d, mpmath.mpf(1e-17), 64 + 12 * p, float))
+    return _SERIES_FLOAT[key]
+
+
+def careful_phase(p: int, d: float, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """cos, sin of (p/d) t in mpmath with enough digits for any |phase| (used beyond phase.PHASE_LIMIT)."""
+    cos_out, sin_out = np.empty(t.shape), np.empty(t.shape)
+    for index, tv in np.ndenumerate(t):
+        size = abs(p * tv / d)
+        with mpmath.workdps(30 + int(math.log10(size + 1))):
+            angle = mpmath.mpf(p) * mpmath.mpf(float(tv)) / mpmath.mpf(d)
+            cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))
+    return cos_out, sin_out
+
+
+def _series_matrix(core, p: int, d: float) -> np.ndarray:
+    """(2(p+1), 9) coefficients for trig_series: gamma^(1) (3 columns), Re V (3), Im V (3)."""
+    key = (core, p, d)
+    if key not in _SERIES_MATRIX:
+        c = series_float(core, p, d)
+        columns = [c[0, j, 0] for j in range(3)] + [c[1, j, 0] for j in range(3)] + [c[1, j, 1] for j in range(3)]
+        _SERIES_MATRIX[key] = np.ascontiguousarray(np.stack([np.concatenate(col) for col in columns], axis=1))
+    return _SERIES_MATRIX[key]
+
+
+def _one_d(core, sigma, t: np.ndarray, p: int, d: float) -> np.ndarray:
+    t = np.ravel(t)
+    T, S = FLOAT.tanh_sech(t)
+    values = trig_series.evaluate(T, S, _series_matrix(core, p, d))  # rows: gamma^(1) (3), Re V (3), Im V (3)
+    cphi, sphi = phase.phase_cos_sin(p, d, t)
+    if t.size and np.max(np.abs(t)) * (p / d) >= phase.PHASE_LIMIT:
+        far = np.abs(p * t / d) >= phase.PHASE_LIMIT
+        cphi[far], sphi[far] = careful_phase(p, d, t[far])
+    out = np.empty((t.size, 3, 3))
+    sign = -sigma[p]
+    for j in range(3):
+        re, im = values[3 + j], values[6 + j]
+        out[:, 0, j] = values[j]
+        out[:, 1, j] = cphi * re - sphi * im
+        out[:, 2, j] = sign * (sphi * re + cphi * im)
+    return out
+
+
+def gamma_basis(core, sigma, ps, t, p, d) -> np.ndarray:
+    """Rows gamma^(1..3) at t, shape ``broadcast(t, d).shape + (3, 3)`` (see the generated docstring)."""
+    p = basis_p(p, ps)
+    t, d = np.broadcast_arrays(real_array("t", t), real_array("d", d, positive=True))
+    out = np.empty(t.shape + (3, 3))
+    if d.size == 1 or np.all(d == d.flat[0]):
+        return _one_d(core, sigma, t, p, float(d.flat[0])).reshape(t.shape + (3, 3))
+    for dv in np.unique(d):
+        mask = d == dv
+        out[mask] = _one_d(core, sigma, t[mask], p, float(dv))
+    return out
+
+
+def gamma_basis_mp(core, sigma, ps, t, p, d, dps):
+    """The mpmath twin: a 3x3 ``mpmath.matrix`` at ``dps`` digits (scalars t, d)."""
+    dps = precision("dps", dps)
+    p = basis_p(p, ps)
+    with mpmath.workdps(dps):
+        t = mp_real("t", t)
+        d = mp_real("d", d, positive=True)
+    rows = _series_mp(core, p, d, max(dps, 40))
+    with mpmath.workdps(dps + 10):
+        th = 2 * mpmath.atan(mpmath.exp(-t))
+        # cos k th, sin k th once for the 15 series of this call (each was recomputing them)
+        cosines = [mpmath.cos(k * th) for k in range(p + 1)]
+        sines = [mpmath.sin(k * th) for k in range(p + 1)]
+
+        def series(part):
+            alpha, beta = part
+            return mpmath.fsum(alpha[k] * cosines[k] + beta[k] * sines[k] for k in range(p + 1))
+
+        out = mpmath.matrix(3, 3)
+        phase_mp = p * t / d
+        cphi, sphi = mpmath.cos(phase_mp), mpmath.sin(phase_mp)
+        for j in range(3):
+            out[0, j] = series(rows[0][j][0])
+            re, im = series(rows[1][j][0]), series(rows[1][j][1])
+            out[1, j] = cphi * re - sphi * im
+            out[2, j] = -sigma[p] * (sphi * re + cphi * im)
+    with mpmath.workdps(dps):
+        return +out
