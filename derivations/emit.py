@@ -125,3 +125,8 @@ class Emitted:
 def emit_source(items) -> dict:
     """``{name: source}`` for the template."""
     return {item.name: item.source() for item in items}
+
+
+def emitted_formulas(build) -> dict:
+    """``{name: Emitted}`` of every derivation that ran in ``build`` (their exports["emit"])."""
+    return {item.name: item for name in build.names for item in build.results[name].exports.get("emit", ())}

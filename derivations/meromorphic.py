@@ -46,9 +46,7 @@ of rows gamma^(1), gamma^(2), gamma^(3) has determinant +1.
 from __future__ import annotations
 
 import hashlib
-from dataclasses import dataclass
 
-import flint
 import sympy as sp
 
 from suslov.recipes import basis as recipe
@@ -63,72 +61,40 @@ from .certificates import (
     stopwatch,
 )
 from .exact import Domain, certify_zero
-from .recipe_rings import BASIS_CTX as CTX
-from .recipe_rings import BASIS_RING
+from .meromorphic_printed import (
+    coefficient_tables,
+    compare_poly_f2,
+    compare_printed_examples,
+    printed_comparisons,
+    written_out,
+)
+from .meromorphic_ring import (  # noqa: F401  (re-exported: the ring helpers the tests and roundtrip use)
+    CTX,
+    DOMAIN,
+    I2,
+    ONE,
+    RING,
+    ZCTX,
+    ZD,
+    ZV,
+    Basis,
+    D,
+    DD,
+    I,
+    X,
+    at_x,
+    conj,
+    gamma1_numerator,
+    hypergeometric_polynomials,
+    in_y_squared,
+    red,
+    third_order_residual,
+)
 from .result import DerivationResult
 
 NAME = "meromorphic"
 TITLE = "Meromorphic solutions for odd $p$ and the orthonormal basis (sections 5.1, 6.1)"
 REQUIRES = ("hypergeometric",)
-
-RING = BASIS_RING
-X, D, I = CTX.gens()
-ONE = CTX.constant(1)
-I2 = I**2 + 1
-DOMAIN = "Q[x,d,i]/(i^2+1) (python-flint fmpq_mpoly; numerators over (1+x^2)^p)"
-ZCTX = flint.fmpq_mpoly_ctx.get(("z", "d"), "lex")
-ZV, ZD = ZCTX.gens()
-
-
-def red(poly):
-    """Normal form modulo i^2 + 1 (i-degree <= 1)."""
-    return divmod(poly, I2)[1]
-
-
-def conj(poly):
-    return red(poly.compose(X, D, -I))
-
-
-def at_x(poly, value: int):
-    return poly.compose(CTX.constant(value), D, I)
-
-
-def DD(N, p: int, rate: int, q: int | None = None):
-    """d * numerator of D(e^{i r t} N/(1+x^2)^q) over (1+x^2)^(q+1) (the recipe's operator)."""
-    return recipe.DD(N, p, rate, RING, q)
-
-
-def third_order_residual(N, p: int, rate: int):
-    """d^4 (1+x^2)^(p+4) times eq:genhipprep applied to g1 = e^{i rate (p/d) t} N/(1+x^2)^p.
-
-    With w1 = (p/d)(x^2-1)/(1+x^2) and w2^2 = 4 p^2 (d^2+1) x^2/(d^2 (1+x^2)^2) the
-    coefficients a'ss become the polynomial factors below (derived by hand from
-    a'ss and checked by the certificates of ``derivations.hypergeometric``).
-    """
-    G0 = N
-    G1 = DD(G0, p, rate, p)
-    G2 = DD(G1, p, rate, p + 1)
-    G3 = DD(G2, p, rate, p + 2)
-    e = D**2 + 1
-    u = X**2 - 1
-    v = 1 + X**2
-    return red(e * p**3 * u * G3 + D * p**3 * e * (2 * u**2 - 4 * X**2) * G2
-               + e * p**3 * u * ((D**2 + p * p) * u**2 + 4 * p * p * e * X**2) * G1
-               - 4 * p**5 * e**2 * D * X**2 * v**2 * G0)
-
-
-def gamma1_numerator(p: int):
-    return recipe.gamma1_numerator(p, RING)
-
-
-def hypergeometric_polynomials(p: int):
-    return recipe.hypergeometric_polynomials(p, RING)
-
-
-def in_y_squared(poly):
-    """poly(y) -> poly(x^2)."""
-    return RING.square_x(poly)
-
 
 def poisson_residuals(sol: Solution) -> list:
     """The c-free Poisson equations, numerators times d (zero iff solved)."""
@@ -158,17 +124,6 @@ def conservation_certificate(log: CertificateLog) -> Certificate:
     return certify_zero(log, "the c-free Poisson matrix A(t) (g1' = a S g3, g2' = w1 g3, g3' = -a(d^2+1) S g1 - w1 g2) "
                         "is real and skew for M = diag(d^2+1, 1, 1): A^T M + M A = 0, so M-products of two "
                         "solutions are constant in t", "eq:ps", list(A.T * G + G * A), Domain("Q(a,d,S,w1)"))
-
-
-@dataclass
-class Basis:
-    p: int
-    real: Solution
-    complex_: Solution
-    k: object            # V2 numerator at x = 0 (complex constant in Q(d)(i))
-    scale_real: object   # the numerators of gamma^(1) are over scale_real (1+x^2)^p
-    sigma: int           # V3(0) = i sigma V2(0)
-    certificates: list
 
 
 def construct(p: int) -> tuple[Solution, Solution]:
@@ -327,15 +282,6 @@ def basis_for_p(p: int) -> dict:
 
 
 def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
-    # imported here: meromorphic_printed builds on this module's ring helpers
-    from .meromorphic_printed import (
-        coefficient_tables,
-        compare_poly_f2,
-        compare_printed_examples,
-        printed_comparisons,
-        written_out,
-    )
-
     result = DerivationResult(NAME)
     rows = []
     bases, objects = {}, {}

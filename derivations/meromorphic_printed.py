@@ -14,7 +14,7 @@ import sympy as sp
 from . import paper
 from .certificates import Certificate, CertificateLog, Outcome, stopwatch
 from .errata import erratum
-from .meromorphic import (
+from .meromorphic_ring import (
     CTX,
     DOMAIN,
     Basis,

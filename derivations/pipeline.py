@@ -31,6 +31,7 @@ from suslov import outdir
 
 from . import public_api
 from .certificates import CertificateLog, Outcome
+from .emit import emitted_formulas
 from .options import BuildOptions
 from .pdf import is_byproduct
 from .registry import DERIVATIONS, resolve
@@ -151,11 +152,6 @@ def derive(options: BuildOptions, only: list[str] | None = None, progress: Progr
 
 EMITTED_ORDER = ("omega", "omega_general", "lambda_squared", "p_squared_i13_zero", "p_squared_i23_zero",
                  "special_parameters", "scattering_angle")
-
-
-def emitted_formulas(build: Build) -> dict:
-    """``{name: Emitted}`` of every derivation that ran (their exports["emit"])."""
-    return {item.name: item for name in build.names for item in build.results[name].exports.get("emit", ())}
 
 
 def _scattering_keys(build: Build) -> str:

@@ -252,7 +252,7 @@ def certify_module(log: CertificateLog, build, directory: Path) -> list:
     runs while this process does its own part.
     """
     from . import float_paths
-    from .pipeline import emitted_formulas
+    from .emit import emitted_formulas
 
     module = load_module(directory)
     exports = build.results["meromorphic"].exports

@@ -50,6 +50,7 @@ import numpy as np
 
 from .loader import gf
 
+from .scene_errors import SceneError
 from .sweep_spec import parse_sweep
 
 EFFECTS = ("omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_enclosure",
@@ -68,14 +69,6 @@ SCIPY_METHODS = ("RK45", "DOP853", "Radau", "LSODA")
 METHODS = ("taylor", *(f"scipy:{m}" for m in SCIPY_METHODS))
 MAX_SAMPLES = 1_000_000
 FIGURE_FORMATS = ("png", "pdf", "svg")
-
-
-class SceneError(ValueError):
-    """A scene file that cannot be run: file, field and reason."""
-
-    def __init__(self, path, field_name: str, reason: str):
-        self.path, self.field, self.reason = str(path), field_name, reason
-        super().__init__(f"{path}: {field_name}: {reason}")
 
 
 @dataclass

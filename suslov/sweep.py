@@ -38,6 +38,7 @@ from . import executor
 from .body import make_body
 from .engine import numeric_angle
 from .planner import point_steps
+from .sweep_outputs import columns_of, write_sweep_outputs
 from .sweep_spec import tensor_of
 
 SAMPLE_FOR_EXPLAIN = 20_000
@@ -210,15 +211,6 @@ def chunk_tasks(scene, chunk: int) -> tuple[ChunkTasks, list]:
     return tasks, keys
 
 
-def columns_of(scene) -> list[str]:
-    names = list(scene.sweep.columns)
-    for effect in scene.effects:
-        names += [effect, f"{effect}_error", f"{effect}_method"]
-    if scene.sweep.energies > 1 and "scattering_angle" in scene.effects:
-        names.append("energy_spread")
-    return names + ["error"]
-
-
 def assemble(scene, rows: list) -> dict:
     """Column name -> list of values, in point order (inputs first, ``error`` last)."""
     sw = scene.sweep
@@ -257,7 +249,6 @@ def run_sweep(scene, out, *, scheduler: str | None = None, workers: int | None =
     (``suslov simulate --yes``).
     """
     from .outputs import check_out
-    from .sweep_outputs import write_sweep_outputs
 
     out = Path(out)
     check_out(out)

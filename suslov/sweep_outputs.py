@@ -15,7 +15,6 @@ import math
 import numpy as np
 
 from .outputs import REPORT, staged
-from .sweep import columns_of
 
 SCALARS = ("scattering_angle", "scattering_angle_enclosure", "energy_spread")
 LABELS = {"scattering_angle": r"$\Delta\psi$ (rad)", "scattering_angle_enclosure": r"$\Delta\psi$ ball midpoint (rad)",
@@ -148,6 +147,16 @@ def _report(scene, plan, files, seconds, computed, stats) -> str:
              "## Summary", "", "```json", json.dumps(stats, indent=1, sort_keys=True), "```", "",
              "## Files", ""] + [f"- `{f}`" for f in files]
     return "\n".join(lines) + "\n"
+
+
+def columns_of(scene) -> list[str]:
+    """The table's columns: the inputs, three per effect (value, _error, _method), energy_spread, error."""
+    names = list(scene.sweep.columns)
+    for effect in scene.effects:
+        names += [effect, f"{effect}_error", f"{effect}_method"]
+    if scene.sweep.energies > 1 and "scattering_angle" in scene.effects:
+        names.append("energy_spread")
+    return names + ["error"]
 
 
 def write_sweep_outputs(scene, plan, table: dict, out, seconds: float, computed: int, progress=None) -> list[str]:

@@ -33,6 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .scene_errors import SceneError
+
 MAX_POINTS = 10_000_000
 TENSOR_FIELDS = ("I11", "I22", "I33", "I12", "I13", "I23")
 PD_FIELDS = ("p", "d")
@@ -60,7 +62,6 @@ class Sweep:
 
 
 def _error(path, field_name, reason):
-    from .scene import SceneError  # the scene module imports this one
     return SceneError(path, field_name, reason)
 
 
