@@ -11,7 +11,7 @@ Usage examples::
     python build_formulas.py --pdf           # build, then pdflatex into build/pdf/ (generated/ untouched)
     python build_formulas.py --diff HEAD~3   # what changed since a revision (or a directory), latexdiff PDF
 
-Every build certifies the generated module as emitted (``derivations/roundtrip.py``):
+Every build certifies the generated module as emitted (``derivations/output/roundtrip.py``):
 it is imported from the staging directory and checked against the certified objects
 before anything is moved into place.
 
@@ -31,13 +31,23 @@ import sys
 import tempfile
 from pathlib import Path
 
-from derivations.cache import TreeCache, build_key
-from derivations.certificates import CertificationFailure
-from derivations.estimate import estimate_seconds
-from derivations.options import PMAX_LIMIT, BuildOptions
-from derivations.pdf import PdfError, compile_pdfs, document_report
-from derivations.pipeline import (GENERATED, ROOT, Progress, claim_output, compare_trees, derive, install_tree,
-                                  is_byproduct, summary, write_atomically)
+from derivations.core.cache import TreeCache, build_key
+from derivations.core.certificates import CertificationFailure
+from derivations.core.options import PMAX_LIMIT, BuildOptions
+from derivations.output.estimate import estimate_seconds
+from derivations.output.pdf import PdfError, compile_pdfs, document_report
+from derivations.output.pipeline import (
+    GENERATED,
+    ROOT,
+    Progress,
+    claim_output,
+    compare_trees,
+    derive,
+    install_tree,
+    is_byproduct,
+    summary,
+    write_atomically,
+)
 from derivations.registry import DERIVATIONS
 from suslov.executor import SchedulerError, check_reachable, scheduler_address
 from suslov.outdir import OutputRefused
@@ -127,8 +137,8 @@ def _jobs(text: str) -> int:
 
 def verify_tree(directory: Path, pmax: int | None, quiet: bool) -> int:
     """--verify DIR: derive what the module needs, then run the round trip on DIR's module."""
-    from derivations.pipeline import MODULE_NEEDS
-    from derivations.roundtrip import verify
+    from derivations.output.pipeline import MODULE_NEEDS
+    from derivations.output.roundtrip import verify
 
     if not (directory / "suslov_formulas.py").is_file():
         print(f"build_formulas.py: --verify {directory}: no suslov_formulas.py there", file=sys.stderr)
@@ -160,7 +170,7 @@ def verify_tree(directory: Path, pmax: int | None, quiet: bool) -> int:
 
 def diff_command(old: str, new: Path) -> int:
     """--diff OLD: the change list, then the latexdiff PDF (exit 1 with the reason if it cannot be made)."""
-    from derivations.diff import DiffError, diff_trees
+    from derivations.output.diff import DiffError, diff_trees
 
     if not (new / "suslov_formulas.tex").is_file():
         print(f"build_formulas.py: --diff: {new} has no suslov_formulas.tex (build first)", file=sys.stderr)
@@ -286,7 +296,7 @@ def _check_verdict(reference, differing: list, against: str) -> int:
 
 
 def _from_cache(key: str, target, args) -> int | None:
-    """A whole build from the content-keyed cache (derivations.cache), or None when there is none."""
+    """A whole build from the content-keyed cache (derivations.core.cache), or None when there is none."""
     entry = TreeCache().lookup(key)
     if entry is None:
         return None

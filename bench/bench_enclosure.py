@@ -3,8 +3,8 @@
 Measured side by side in one run, on one general body (I13 != 0) and one body with I13 = 0:
 
 * ``suslov.validated.scattering_angle_enclosure`` at widths 1e-12 and 1e-30 (targets: 0.5 s and 10 s);
-* the simulator's DOP853 float route (``suslov.integrate.numeric_angle``, error *estimate* only);
-* the 36-digit mpmath route of the build's old evidence grid (``derivations.poisson_taylor.ss_through``);
+* the simulator's DOP853 float route (``suslov.simulator.integrate.numeric_angle``, error *estimate* only);
+* the 36-digit mpmath route of the build's old evidence grid (``derivations.sections.poisson_taylor.ss_through``);
 * the build's grid certificate: 24 points at 36 digits of evidence (old) against 18 enclosed points at
   1e-18 plus 6 fast-rotation points of evidence (new).
 
@@ -28,12 +28,11 @@ sys.path.insert(0, str(ROOT / "bench"))
 from machine_info import cpu_name  # noqa: E402
 from timing import median_seconds  # noqa: E402
 
-from derivations import scattering  # noqa: E402
-from derivations import scattering_balls  # noqa: E402
-from derivations.certificates import CertificateLog  # noqa: E402
-from derivations.poisson_taylor import ss_through  # noqa: E402
-from suslov.body import make_body  # noqa: E402
-from suslov.integrate import numeric_angle  # noqa: E402
+from derivations.sections import scattering, scattering_balls  # noqa: E402
+from derivations.core.certificates import CertificateLog  # noqa: E402
+from derivations.sections.poisson_taylor import ss_through  # noqa: E402
+from suslov.simulator.body import make_body  # noqa: E402
+from suslov.simulator.integrate import numeric_angle  # noqa: E402
 from suslov.validated import omega_coefficients, scattering_angle_enclosure  # noqa: E402
 
 GENERAL = ("5/4", "1", "3/10", "-1/2")

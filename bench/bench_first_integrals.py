@@ -4,9 +4,9 @@ Three routes, side by side in one run, on the same claim (dF3/dt = 0 along
 eq:sysfin + Poisson, P2 a polynomial):
 
 * ``flint``: the build's route, fraction-free in Z[d, w1, w2, g1, g2, g3]
-  with python-flint (``derivations.first_integrals.certify_p``);
+  with python-flint (``derivations.sections.first_integrals.certify_p``);
 * ``QQ(d)``: SymPy ``Poly`` over the rational-function field QQ(d)
-  (``derivations.first_integrals.sympy_integral`` + ``lie_residual``);
+  (``derivations.sections.first_integrals.sympy_integral`` + ``lie_residual``);
 * ``simplify``: SymPy expression trees with ``simplify`` (the straightforward
   route; not a certificate, shown for its cost only), for p <= 11.
 
@@ -36,9 +36,9 @@ sys.path.insert(0, str(ROOT))
 
 from bench.machine_info import cpu_name  # noqa: E402
 from bench.timing import median_seconds  # noqa: E402
-from derivations import first_integrals as fi  # noqa: E402
-from derivations.certificates import CertificateLog  # noqa: E402
-from derivations.symbols import d, g1, g2, g3, p, w1, w2  # noqa: E402
+from derivations.core.certificates import CertificateLog  # noqa: E402
+from derivations.core.symbols import d, g1, g2, g3, p, w1, w2  # noqa: E402
+from derivations.sections import first_integrals as fi  # noqa: E402
 
 FIELD = {w1: d / (p * (d**2 + 1)) * w2**2, w2: -d / p * w1 * w2}
 

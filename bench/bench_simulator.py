@@ -3,11 +3,11 @@
 Measured side by side in one run on the 2-core machine:
 
 * one general-body ss scattering angle at 1e-12 (paper section 5.1; the body of Fig. 1): heyoka's
-  Taylor integrator (``suslov.taylor.taylor_angle``, after compilation) against the previous
-  route, SciPy's DOP853 with its 100x tighter check run (``suslov.integrate.numeric_angle``);
+  Taylor integrator (``suslov.simulator.taylor.taylor_angle``, after compilation) against the previous
+  route, SciPy's DOP853 with its 100x tighter check run (``suslov.simulator.integrate.numeric_angle``);
   targets: at most 1 ms per trajectory and at least 50 times faster;
 * a 10,000-point sweep of general bodies (a 100 x 100 grid over (I13, I23) at I11 = 2, I22 = 1,
-  I33 = 3/2): ``suslov.sweep.run_sweep`` on local processes (both cores, started by the run) and
+  I33 = 3/2): ``suslov.simulator.sweep.run_sweep`` on local processes (both cores, started by the run) and
   on a dask.distributed ``LocalCluster`` (2 worker processes, started before the timing, as a
   user's cluster would be); targets: at most 30 s, Dask overhead at most 20%;
 * accuracy: the sweep's float angle at 10 seeded general bodies against the rigorous 30-digit
@@ -34,10 +34,11 @@ sys.path.insert(0, str(ROOT / "bench"))
 from machine_info import cpu_name  # noqa: E402
 from results_io import write_results  # noqa: E402
 
-from suslov import sweep, taylor  # noqa: E402
-from suslov.body import make_body  # noqa: E402
-from suslov.integrate import numeric_angle  # noqa: E402
-from suslov.scene import load_scene  # noqa: E402
+from suslov.simulator import taylor  # noqa: E402
+from suslov.simulator import sweep
+from suslov.simulator.body import make_body  # noqa: E402
+from suslov.simulator.integrate import numeric_angle  # noqa: E402
+from suslov.simulator.scene import load_scene  # noqa: E402
 from suslov.validated import scattering_angle_enclosure  # noqa: E402
 
 FIG1 = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]

@@ -10,7 +10,7 @@ the same answer):
   expanded (section 5.2), which every worker of the per-p logarithm decision repeats.
 
 Not measured yet: the operator identities of ``hypergeometric`` and the zero tests of
-``derivations.exact`` (their canonical forms are SymPy's polys domains, which symengine lacks).
+``derivations.core.exact`` (their canonical forms are SymPy's polys domains, which symengine lacks).
 
 Run: ``pip install -c constraints.txt -e ".[bench]" && python bench/bench_symengine.py``; writes ``bench/results/symengine.md`` and ``.json``.
 Medians of 5 runs; the machine is shared.
@@ -34,10 +34,10 @@ sys.path.insert(0, str(ROOT / "bench"))
 from machine_info import cpu_name  # noqa: E402
 from results_io import write_results  # noqa: E402
 
-from derivations import galois, kovalevskaya, model  # noqa: E402
-from derivations.certificates import CertificateLog  # noqa: E402
-from derivations.options import BuildOptions  # noqa: E402
-
+from derivations.sections import model  # noqa: E402
+from derivations.core.certificates import CertificateLog  # noqa: E402
+from derivations.core.options import BuildOptions  # noqa: E402
+from derivations.sections import galois, kovalevskaya
 
 
 def same(value, reference) -> bool:

@@ -43,11 +43,11 @@ R = "suslov/runtime/"
 # (id, file, original text (unique in the file), mutated text, detector)
 MUTANTS = [
     # derivations: the certification core and the paper's sections (the build must fail)
-    ("exact-zero-test-always-zero", "derivations/exact.py", "    return form.is_zero\n", "    return True\n", "build"),
-    ("residue-drop-first-obstruction", "derivations/residue.py",
+    ("exact-zero-test-always-zero", "derivations/core/exact.py", "    return form.is_zero\n", "    return True\n", "build"),
+    ("residue-drop-first-obstruction", "derivations/sections/residue.py",
      "for k, name, value in obstructions if value != 0]", "for k, name, value in obstructions[1:] if value != 0]",
      "test:tests/test_independent_tables.py"),
-    ("laurent-csch-sign", "derivations/residue.py", "csch = [-2 * (sp.Integer(2) ** (2 * k - 1) - 1)",
+    ("laurent-csch-sign", "derivations/sections/residue.py", "csch = [-2 * (sp.Integer(2) ** (2 * k - 1) - 1)",
      "csch = [2 * (sp.Integer(2) ** (2 * k - 1) - 1)", "build"),
     # suslov/recipes: written once, run exactly by the build (the build must fail)
     ("recipe-integrals-qk", "suslov/recipes/integrals.py", "q_k = (2 * k + 1) ** 2 * D**2 + p**2",

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from types import ModuleType
 
-from . import (
+from derivations.sections import (
     first_integrals,
     galois,
     hypergeometric,

@@ -14,7 +14,7 @@ numerically) need neither SymPy nor ``generated``; the simulator modules import
 """
 from __future__ import annotations
 
-from .loader import active_formulas, load_formulas, use_formulas  # noqa: F401  (public re-exports)
+from suslov.loader import active_formulas, load_formulas, use_formulas  # noqa: F401  (public re-exports)
 
 _OWN = ["active_formulas", "load_formulas", "use_formulas"]
 

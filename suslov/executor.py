@@ -1,6 +1,6 @@
 """One executor for chunks of independent work: local processes by default, a Dask cluster on request.
 
-Used by sweep scenes (:mod:`suslov.sweep`); the work is a picklable top-level function applied to
+Used by sweep scenes (:mod:`suslov.simulator.sweep`); the work is a picklable top-level function applied to
 each chunk.  Guarantees, whatever runs the chunks:
 
 * **Same results, same order.**  Results come back indexed by chunk, so the caller assembles rows
@@ -33,7 +33,7 @@ from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from multiprocessing import get_context
 from pathlib import Path
 
-from .outdir import make_dir, remove_stale
+from suslov.outdir import make_dir, remove_stale
 
 CONNECT_TIMEOUT = 10.0
 TMP_PREFIX = ".suslov-tmp"   # in-flight files: TMP_PREFIX-PID-KEY; those of dead processes are removed
@@ -126,8 +126,8 @@ def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkSto
     1 runs in this process).  ``on_finish(i)`` is called as chunk i completes (any order).
     ``meanwhile()``, if given, runs exactly once in this process while the workers compute (before
     the chunks when there are no workers), so this process's own work does not leave them idle.
-    Used by sweeps (:mod:`suslov.sweep`) and by the build's per-p certificates
-    (``derivations.certificates.CertificateLog.map_per_p``).
+    Used by sweeps (:mod:`suslov.simulator.sweep`) and by the build's per-p certificates
+    (``derivations.core.certificates.CertificateLog.map_per_p``).
     """
     results: list = [None] * len(chunks)
     pending = []

@@ -1,6 +1,6 @@
 """Which generated module the run-time package uses, and certified modules for any p range (issue 26).
 
-The build emits one module, ``suslov_formulas.py`` (certified as emitted: ``derivations/roundtrip.py``),
+The build emits one module, ``suslov_formulas.py`` (certified as emitted: ``derivations/output/roundtrip.py``),
 with the per-p objects up to its ``PMAX``.  This module finds the one in use and loads others:
 
 * :func:`active_formulas` -- the active module, in this order: the one given to :func:`use_formulas`; the

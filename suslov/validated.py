@@ -14,9 +14,16 @@ from __future__ import annotations
 
 from flint import arb, ctx
 
-from suslov.loader import gf
-from suslov.kernel.enclosure import DIGITS_RANGE, MAX_SECONDS, AngleEnclosure, EnclosureTooCostly, ss_angle_enclosure, to_arb
+from suslov.kernel.enclosure import (
+    DIGITS_RANGE,
+    MAX_SECONDS,
+    AngleEnclosure,
+    EnclosureTooCostly,
+    ss_angle_enclosure,
+    to_arb,
+)
 from suslov.kernel.validate import PREC_RANGE, precision
+from suslov.loader import gf
 
 __all__ = ["AngleEnclosure", "EnclosureTooCostly", "omega_coefficients", "scattering_angle_enclosure"]
 

@@ -11,8 +11,8 @@ import pytest
 
 os.environ["SUSLOV_NO_CACHE"] = "1"
 
-from derivations.options import BuildOptions
-from derivations.pipeline import derive
+from derivations.core.options import BuildOptions
+from derivations.output.pipeline import derive
 
 
 @pytest.fixture(scope="session")

@@ -16,7 +16,7 @@ import time
 import numpy as np
 import pytest
 
-from derivations.pipeline import GENERATED, ROOT
+from derivations.output.pipeline import GENERATED, ROOT
 from generated import suslov_formulas as sf
 from suslov.kernel.enclosure import EnclosureTooCostly
 from suslov.kernel.lru import BoundedCache
@@ -116,7 +116,7 @@ def test_per_d_caches_are_bounded():
 
 
 def test_large_sweep_needs_confirmation(tmp_path, capsys):
-    from suslov.cli import main
+    from suslov.simulator.cli import main
 
     scene = tmp_path / "big.toml"
     scene.write_text('name = "big"\n[sweep]\np = { linear = [0.5, 9.5], count = 1000 }\n'

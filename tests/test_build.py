@@ -8,12 +8,19 @@ import pytest
 import sympy as sp
 
 import build_formulas
-from derivations import model
-from derivations.certificates import CertificationFailure
-from derivations.differential import T
-from derivations.options import BuildOptions
-from derivations.pipeline import GENERATED, ROOT, VOLATILE, compare_trees, derive, write_atomically
-from derivations.symbols import w1
+from derivations.core.certificates import CertificationFailure
+from derivations.core.differential import T
+from derivations.core.options import BuildOptions
+from derivations.core.symbols import w1
+from derivations.output.pipeline import (
+    GENERATED,
+    ROOT,
+    VOLATILE,
+    compare_trees,
+    derive,
+    write_atomically,
+)
+from derivations.sections import model
 
 
 def tree_digest(root: Path) -> str:
@@ -68,7 +75,7 @@ def test_failure_while_rendering_leaves_output_untouched(tmp_path, monkeypatch):
     build = derive(BuildOptions(pmax=2), ["special_case"])
     write_atomically(build, out)
     before = tree_digest(out)
-    import derivations.pipeline as pipeline
+    import derivations.output.pipeline as pipeline
 
     def broken(template, context):
         if template.startswith("errata"):
@@ -134,7 +141,7 @@ def test_pmax_splits_parities():
 
 def test_costliest_list_shows_each_outcome(default_build):
     """The console's "costliest" list showed refuted claims as if they were proved."""
-    from derivations.pipeline import summary
+    from derivations.output.pipeline import summary
 
     text = summary(default_build, top=len(default_build.log.certificates))
     costly = text.split("costliest", 1)[1].splitlines()[1:]

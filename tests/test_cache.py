@@ -9,10 +9,11 @@ import json
 import pytest
 
 import build_formulas
-from derivations import cache, residue
-from derivations.certificates import CertificateLog
-from derivations.options import BuildOptions
-from derivations.pipeline import compare_trees, derive, write_atomically
+from derivations.core import cache
+from derivations.core.certificates import CertificateLog
+from derivations.core.options import BuildOptions
+from derivations.output.pipeline import compare_trees, derive, write_atomically
+from derivations.sections import residue
 
 
 @pytest.fixture
@@ -44,8 +45,8 @@ def test_a_source_change_misses(cache_dir, monkeypatch):
     monkeypatch.setattr(cache, "module_digest", lambda name, real=cache.module_digest: real(name) + "x")
     assert cache.per_p_key(residue.logarithm_verdict, 2) != before
     monkeypatch.undo()
-    assert "derivations.physical_bodies" in cache._imports("derivations.residue", cache._module_file("derivations.residue"))
-    assert "derivations.galois" not in cache._imports("derivations.residue", cache._module_file("derivations.residue"))
+    assert "derivations.sections.physical_bodies" in cache._imports("derivations.sections.residue", cache._module_file("derivations.sections.residue"))
+    assert "derivations.sections.galois" not in cache._imports("derivations.sections.residue", cache._module_file("derivations.sections.residue"))
 
 
 def test_corrupt_and_foreign_entries_are_recomputed(cache_dir):

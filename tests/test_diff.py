@@ -7,8 +7,8 @@ import shutil
 import pytest
 
 import build_formulas
-from derivations import diff
-from derivations.pipeline import GENERATED, ROOT
+from derivations.output import diff
+from derivations.output.pipeline import GENERATED, ROOT
 
 
 def copy_of_generated(tmp_path):

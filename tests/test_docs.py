@@ -84,8 +84,8 @@ def test_every_public_name_of_the_generated_module_is_documented(built):
 def test_runtime_pages_document_the_simulator(built):
     _, out = built
     page = (out / "api" / "runtime.html").read_text(encoding="utf-8")
-    for name in ("suslov.scene.load_scene", "suslov.planner.make_plan", "suslov.engine.execute",
-                 "suslov.engine.write_outputs", "suslov.figures.figure", "suslov.validated.scattering_angle_enclosure"):
+    for name in ("suslov.simulator.scene.load_scene", "suslov.simulator.planner.make_plan", "suslov.simulator.engine.execute",
+                 "suslov.simulator.engine.write_outputs", "suslov.simulator.figures.figure", "suslov.validated.scattering_angle_enclosure"):
         assert f'id="{name}"' in page, name
     recipes = (out / "api" / "recipes.html").read_text(encoding="utf-8")
     for name in ("suslov.recipes.integrals.integral_numerators", "suslov.recipes.basis.construct"):

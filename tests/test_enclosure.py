@@ -1,6 +1,6 @@
 """Rigorous enclosures (issue 16): validated angles, ball certificates, float functions inside their bounds.
 
-Independent routes for the expected values: ``derivations.poisson_taylor.ss_through`` (mpmath at 50
+Independent routes for the expected values: ``derivations.sections.poisson_taylor.ss_through`` (mpmath at 50
 digits: a different implementation of series + Taylor steps, no balls), the closed form of
 Theorem 5.2, exact rational evaluation of the first integrals (Fractions), and the simulator's
 DOP853 integration with its error estimate.
@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 from flint import arb, ctx
 
-from derivations.balls import certify_enclosure, decide
-from derivations.certificates import CertificateLog, Outcome
-from derivations.poisson_taylor import ss_through
-from derivations.scattering_balls import omega_pd
+from derivations.core.balls import certify_enclosure, decide
+from derivations.core.certificates import CertificateLog, Outcome
+from derivations.sections.poisson_taylor import ss_through
+from derivations.sections.scattering_balls import omega_pd
 from generated import suslov_formulas as sf
 from suslov.kernel.contexts import MP
 from suslov.kernel.enclosure import ss_angle_enclosure, to_arb
@@ -70,8 +70,8 @@ def test_special_body_contains_the_closed_form():
 
 
 def test_general_body_agrees_with_the_simulators_integration():
-    from suslov.body import make_body
-    from suslov.integrate import numeric_angle
+    from suslov.simulator.body import make_body
+    from suslov.simulator.integrate import numeric_angle
 
     tensor = np.array([[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]])
     body = make_body(tensor=tensor)
@@ -172,6 +172,7 @@ def gamma_basis_ball(t, p, d, bits=256):
     balls (AcbBasisRing), its Fourier form, and the trigonometric series and phase evaluated in arb at the
     exact binary t and d (gamma_basis_mp's formula, no float step anywhere)."""
     from flint import acb
+
     from suslov.kernel import fourier
     from suslov.recipes.rings import AcbBasisRing
 

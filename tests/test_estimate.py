@@ -1,7 +1,7 @@
 """The build's time estimate before starting (issue 13): a power law per per-p phase, from the benchmark."""
 import json
 
-from derivations.estimate import BENCH, estimate_seconds
+from derivations.output.estimate import BENCH, estimate_seconds
 
 
 def test_estimate_from_a_synthetic_benchmark(tmp_path):

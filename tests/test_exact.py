@@ -1,10 +1,17 @@
 """The exact zero test: identities pass, non-identities fail, extensions cover both roots."""
 import sympy as sp
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from derivations.certificates import CertificateLog, CertificationFailure, Outcome
-from derivations.exact import Domain, Extension, certify_zero, is_identically_zero, normal_form
-from derivations.differential import S, T, hyperbolic_ring
+from derivations.core.certificates import CertificateLog, CertificationFailure, Outcome
+from derivations.core.differential import S, T, hyperbolic_ring
+from derivations.core.exact import (
+    Domain,
+    Extension,
+    certify_zero,
+    is_identically_zero,
+    normal_form,
+)
 
 x, y, d, c = sp.symbols("x y d c")
 C_EXT = Extension(c, d**2 + 1, "c = sqrt(d^2+1)")

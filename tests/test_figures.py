@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from suslov import engine, figures
-from suslov.planner import make_plan
-from suslov.scene import SceneError, load_scene
+from suslov.simulator import engine, figures
+from suslov.simulator.planner import make_plan
+from suslov.simulator.scene import SceneError, load_scene
 
 SCENES = [p for p in sorted(Path(__file__).resolve().parent.parent.joinpath("scenes").glob("*.toml"))
           if not load_scene(p).is_sweep]   # sweep figures: tests/test_sweep.py

@@ -10,7 +10,7 @@ import sys
 import numpy as np
 import pytest
 
-from derivations.pipeline import ROOT
+from derivations.output.pipeline import ROOT
 
 SCRIPT = r'''
 import re, sys

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from derivations import first_integrals as fi
+from derivations.sections import first_integrals as fi
 from generated import suslov_formulas as sf
 
 
@@ -142,8 +142,8 @@ def test_construct_rejects_even_p():
 
 
 def test_pmax_101_certifies_every_odd_p():
-    from derivations.options import BuildOptions
-    from derivations.pipeline import derive
+    from derivations.core.options import BuildOptions
+    from derivations.output.pipeline import derive
 
     build = derive(BuildOptions(pmax=101), ["first_integrals"])
     rows = build.results["first_integrals"].exports["rows"]

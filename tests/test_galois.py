@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from conftest import circle_monodromy
 
-from derivations.options import BuildOptions
-from derivations.pipeline import derive
+from derivations.core.options import BuildOptions
+from derivations.output.pipeline import derive
 
 
 def monodromy(p, d, center=1j, radius=0.3):
@@ -50,7 +50,7 @@ def _reference_obstruction_is_zero(p_value, point, delta):
     coefficients: no rotation, no symmetry, no clearing factor (independent of the build's route)."""
     import sympy as sp
 
-    from derivations import galois
+    from derivations.sections import galois
 
     num_e, den_e = galois.reduced_form()
     zeta, m = sp.Symbol("zeta"), galois.m
@@ -79,7 +79,7 @@ def test_decisions_match_a_direct_recursion_at_all_four_points(p_value):
     in Q(i)(m) at each of s1, s2, s3, s4 directly, so the two symmetries are checked too."""
     import sympy as sp
 
-    from derivations import galois
+    from derivations.sections import galois
 
     verdict, _ = galois.decide_logarithms(p_value)
     m = galois.m
@@ -94,7 +94,7 @@ def test_clearing_factor_and_a_planted_logarithm():
     with e = 0 Euler's equation (no logarithm), with e = 1/(m+1) a logarithm for every m."""
     import flint
 
-    from derivations.local_obstruction import (
+    from derivations.sections.local_obstruction import (
         clearing_factor,
         laurent_fractions,
         log_obstruction,
@@ -118,7 +118,7 @@ def test_cleared_coefficients_by_exact_division_equal_reduced_fractions(monkeypa
     the fallback through reduced fractions gives the same T_k and E."""
     import flint
 
-    from derivations import galois, local_obstruction
+    from derivations.sections import galois, local_obstruction
 
     monkeypatch.setattr(local_obstruction, "PROBE", probe)
     numerator, rests, points = galois._obstruction_data()

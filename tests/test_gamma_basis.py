@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from derivations import meromorphic, meromorphic_printed
-from derivations.certificates import CertificateLog
+from derivations.core.certificates import CertificateLog
+from derivations.sections import meromorphic, meromorphic_printed
 from generated import suslov_formulas as sf
 
 
@@ -74,7 +74,7 @@ def test_exact_values_of_the_certified_numerators_match_the_printed_p1_solution(
     typed here; and V -> (0, 1, i sigma) as x -> 0 (the numerators' own normalisation)."""
     from fractions import Fraction
 
-    from derivations import float_paths
+    from derivations.output import float_paths
 
     real, cplx = meromorphic.construct(1)
     x, d, c = Fraction(2, 3), Fraction(3, 4), Fraction(5, 4)

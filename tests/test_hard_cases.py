@@ -14,8 +14,17 @@ import mpmath
 import numpy as np
 import pytest
 
-from generated.suslov_formulas import (BASIS_PS, INTEGRAL_PS, first_integral, first_integral_coefficients,
-                                       first_integral_mp, gamma_basis, gamma_basis_mp, omega, omega_mp)
+from generated.suslov_formulas import (
+    BASIS_PS,
+    INTEGRAL_PS,
+    first_integral,
+    first_integral_coefficients,
+    first_integral_mp,
+    gamma_basis,
+    gamma_basis_mp,
+    omega,
+    omega_mp,
+)
 
 PMAX_BASIS = max(BASIS_PS)
 

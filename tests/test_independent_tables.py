@@ -17,9 +17,9 @@ import pytest
 import sympy as sp
 from flint import arb
 
-from derivations.options import BuildOptions
-from derivations.pipeline import derive
-from derivations.typeset import breakable_product
+from derivations.core.options import BuildOptions
+from derivations.core.typeset import breakable_product
+from derivations.output.pipeline import derive
 from suslov.kernel.enclosure import RHO, _truncation
 
 
@@ -130,8 +130,8 @@ def test_limit_series_tail_bound_covers_the_majorant_tail(W, x, k):
 def test_every_steps_truncation_bound_enters_the_final_radius(monkeypatch):
     """With each step's truncation bound forced to 1e-12, the accumulated error (and so the radius of
     cos Delta psi) must be at least steps x 1e-12: the bound of every step is carried, none dropped."""
+    from derivations.sections.scattering_balls import omega_pd
     from suslov.kernel import enclosure
-    from derivations.scattering_balls import omega_pd
 
     monkeypatch.setattr(enclosure, "_truncation", lambda *a: arb("1e-12"))
     result = enclosure.ss_angle_enclosure(*omega_pd(arb(3), arb("0.5")), digits=8)

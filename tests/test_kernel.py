@@ -11,8 +11,16 @@ import mpmath
 import numpy as np
 import pytest
 
-from suslov.kernel import contexts, fourier, frames, horner, phase, sparse, trig_series, validate
-
+from suslov.kernel import (
+    contexts,
+    fourier,
+    frames,
+    horner,
+    phase,
+    sparse,
+    trig_series,
+    validate,
+)
 
 
 @pytest.fixture(autouse=True)

@@ -11,8 +11,8 @@ import shutil
 
 import pytest
 
-from derivations import pdf
-from derivations.pipeline import GENERATED
+from derivations.output import pdf
+from derivations.output.pipeline import GENERATED
 
 MAX_PAGES = 20
 

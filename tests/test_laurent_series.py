@@ -1,4 +1,4 @@
-"""The Laurent series of coth and csch that derivations/residue.py takes as input are certified.
+"""The Laurent series of coth and csch that derivations/sections/residue.py takes as input are certified.
 
 A fault in the series (the fault-injection run changed 2^(2k-1) - 1 into 2^(2k-1) + 1 in csch and
 passed the whole build before this certificate existed) must now fail.
@@ -6,8 +6,8 @@ passed the whole build before this certificate existed) must now fail.
 import pytest
 import sympy as sp
 
-from derivations.certificates import CertificateLog, CertificationFailure, Outcome
-from derivations.residue import certify_laurent_series, laurent_coefficients
+from derivations.core.certificates import CertificateLog, CertificationFailure, Outcome
+from derivations.sections.residue import certify_laurent_series, laurent_coefficients
 
 
 def test_the_series_used_by_the_build_are_certified():

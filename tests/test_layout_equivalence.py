@@ -15,7 +15,7 @@ import mpmath
 import numpy as np
 import pytest
 
-from derivations.pipeline import GENERATED, ROOT
+from derivations.output.pipeline import GENERATED, ROOT
 
 BEFORE = "878110d"   # the last revision with the machinery inside the template
 

@@ -7,11 +7,10 @@ monodromy matrix with the identity: identity <=> no logarithms (the exponents
 """
 import numpy as np
 import pytest
-
-from derivations.options import BuildOptions
-from derivations.pipeline import derive
-
 from conftest import circle_monodromy
+
+from derivations.core.options import BuildOptions
+from derivations.output.pipeline import derive
 
 
 def monodromy(p, d, radius=0.6):

@@ -2,8 +2,8 @@
 import pytest
 import sympy as sp
 
-from derivations.certificates import CertificateLog, Outcome
-from derivations.numeric import corroborate, ode_residual
+from derivations.core.certificates import CertificateLog, Outcome
+from derivations.core.numeric import corroborate, ode_residual
 
 t, k, y = sp.symbols("t k y")
 

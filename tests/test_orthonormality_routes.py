@@ -1,6 +1,6 @@
 """Orthonormality of the odd-p bases (sections 5.1, 6.1; gam1, gam2, gam3): two certificate routes.
 
-``derivations.meromorphic.certify_p`` certifies orthonormality either by expanding the four
+``derivations.sections.meromorphic.certify_p`` certifies orthonormality either by expanding the four
 product identities (direct, exact zero tests) or by the conservation argument (products of two
 solutions of the certified G-skew Poisson system are constant; constants from x = 0).  The routes
 must agree on the true bases, and both must refuse a basis that solves the Poisson equations but is
@@ -10,8 +10,8 @@ import dataclasses
 
 import pytest
 
-from derivations import meromorphic
-from derivations.certificates import CertificateLog, CertificationFailure, Outcome
+from derivations.core.certificates import CertificateLog, CertificationFailure, Outcome
+from derivations.sections import meromorphic
 
 ORTHONORMAL = "gam1, gam2, gam3"
 

@@ -186,12 +186,12 @@ def test_build_refuses_foreign_out_before_any_work(tmp_path):
 
 
 def test_simulator_refuses_foreign_out_before_any_work(tmp_path, monkeypatch):
-    import suslov.cli
-    from suslov.cli import main
+    import suslov.simulator.cli
+    from suslov.simulator.cli import main
 
     mine = tmp_path / "mine"
     before = user_directory(mine)
-    monkeypatch.setattr(suslov.cli, "execute", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr(suslov.simulator.cli, "execute", lambda *a, **k: pytest.fail("computed before refusing"))
     assert main(["simulate", str(ROOT / "scenes" / "fig1_omega.toml"), "--out", str(mine), "--quiet"]) == 2
     assert snapshot(mine) == before
 
@@ -226,7 +226,7 @@ def test_workers_die_with_their_parent(tmp_path):
 
 
 def test_cache_and_chunk_leftovers_of_dead_processes_are_removed(tmp_path):
-    from derivations.cache import TreeCache
+    from derivations.core.cache import TreeCache
     from suslov.executor import TMP_PREFIX, ChunkStore
 
     dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True,

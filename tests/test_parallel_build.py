@@ -6,9 +6,9 @@ cluster.  Whatever ran it, the certificate log and every output must be identica
 """
 import pytest
 
-from derivations import meromorphic
-from derivations.options import BuildOptions
-from derivations.pipeline import compare_trees, derive, write_atomically
+from derivations.core.options import BuildOptions
+from derivations.output.pipeline import compare_trees, derive, write_atomically
+from derivations.sections import meromorphic
 
 
 def records(build):
@@ -59,8 +59,12 @@ def test_round_trip_refuses_an_emitted_core_with_another_fingerprint():
     matches the fingerprint of the basis certified here (p = 17) and is refused against any other."""
     from pathlib import Path
 
-    from derivations import roundtrip
-    from derivations.certificates import CertificateLog, CertificationFailure, Outcome
+    from derivations.core.certificates import (
+        CertificateLog,
+        CertificationFailure,
+        Outcome,
+    )
+    from derivations.output import roundtrip
 
     generated = Path(__file__).resolve().parent.parent / "generated"
     module = roundtrip.load_module(generated)

@@ -4,9 +4,15 @@ import shutil
 
 import pytest
 
-from derivations import pdf
-from derivations.options import BuildOptions
-from derivations.pipeline import GENERATED, ROOT, compare_trees, derive, write_atomically
+from derivations.core.options import BuildOptions
+from derivations.output import pdf
+from derivations.output.pipeline import (
+    GENERATED,
+    ROOT,
+    compare_trees,
+    derive,
+    write_atomically,
+)
 
 BYPRODUCTS = ("suslov_formulas.aux", "suslov_formulas.log", "suslov_formulas.pdf", "suslov_formulas.out")
 
@@ -44,9 +50,9 @@ def test_pdf_is_written_outside_generated(tmp_path):
     assert [p.name for p in written] == ["suslov_formulas.pdf", "certificates.pdf"]
     assert all(p.stat().st_size > 10_000 and p.parent == tmp_path / "pdf" for p in written)
     assert snapshot(GENERATED) == before
-    # the README's page count is the compiled document's
+    # the page count docs/build.md states is the compiled document's
     import re
-    stated = re.search(r"standalone LaTeX, (\d+) pages at the default pmax", (ROOT / "README.md").read_text())
+    stated = re.search(r"standalone LaTeX, (\d+) pages at the default pmax", (ROOT / "docs" / "build.md").read_text())
     assert stated and int(stated.group(1)) == pdf.document_report(written[0])[0]
 
 

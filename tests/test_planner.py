@@ -1,10 +1,10 @@
 """The planner as a declarative effect graph (issue 15): minimal subgraph, needs first, explained."""
 import pytest
 
-from suslov import planner
-from suslov.engine import STEPS, execute
-from suslov.planner import ORDER, PROVIDERS, make_plan
-from suslov.scene import load_scene
+from suslov.simulator import planner
+from suslov.simulator.engine import STEPS, execute
+from suslov.simulator.planner import ORDER, PROVIDERS, make_plan
+from suslov.simulator.scene import load_scene
 
 
 def scene(tmp_path, body, compute, extra=""):

@@ -1,8 +1,8 @@
 """Progress of long per-p phases (issue 13, item 5): the p reached and an estimate of the time left."""
 import io
 
-from derivations.options import BuildOptions
-from derivations.pipeline import Progress, derive, time_left
+from derivations.core.options import BuildOptions
+from derivations.output.pipeline import Progress, derive, time_left
 
 
 class Terminal(io.StringIO):

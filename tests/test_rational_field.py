@@ -1,7 +1,7 @@
-"""Q[d, 1/d] with python-flint (derivations.rational_field.LaurentQD) against SymPy.
+"""Q[d, 1/d] with python-flint (derivations.core.rational_field.LaurentQD) against SymPy.
 
 The ring operations are compared with SymPy's rational functions on random elements, and the
-whole Frobenius recursion of ``derivations.residue`` is rerun in SymPy's field ``QQ.frac_field(d)``
+whole Frobenius recursion of ``derivations.sections.residue`` is rerun in SymPy's field ``QQ.frac_field(d)``
 (an independent arithmetic) and compared obstruction by obstruction.
 """
 import pytest
@@ -9,9 +9,11 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from derivations import residue
-from derivations.rational_field import LaurentQD
-from derivations.symbols import d  # the symbol the recursion returns its obstructions in
+from derivations.core.rational_field import LaurentQD
+from derivations.core.symbols import (
+    d,  # the symbol the recursion returns its obstructions in
+)
+from derivations.sections import residue
 
 coefficients = st.lists(st.fractions(min_value=-5, max_value=5, max_denominator=7), min_size=1, max_size=4)
 shifts = st.integers(min_value=-3, max_value=3)

@@ -2,9 +2,10 @@
 from fractions import Fraction
 
 import sympy as sp
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from derivations.render import python_source, tex_escape
+from derivations.output.render import python_source, tex_escape
 
 x, y, z = sp.symbols("x y z")
 EXPRESSIONS = [x / y**2, x / (y**2 * z**3), (x + y) ** 3 / (x - y) ** 2, -x**2 * y / (1 + z**2) ** 2, x**-2,

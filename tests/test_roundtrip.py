@@ -13,8 +13,8 @@ import sys
 import numpy as np
 import pytest
 
-from derivations.pipeline import GENERATED, ROOT
-from derivations.roundtrip import load_module, verify
+from derivations.output.pipeline import GENERATED, ROOT
+from derivations.output.roundtrip import load_module, verify
 
 MUTATIONS = [
     # faults in the emitted formulas of the generated module: (function named in the message, original, mutated)

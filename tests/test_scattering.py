@@ -2,21 +2,26 @@
 
 References: (1) the closed form in mpmath at 50 digits (``scattering_angle_mp``) for the
 float64 evaluation; (2) an independent 40-digit integration from t = -oo to +oo
-(``derivations.poisson_taylor``: Frobenius series at the ends, Taylor steps) for the formula
+(``derivations.sections.poisson_taylor``: Frobenius series at the ends, Taylor steps) for the formula
 itself; (3) the full rigid body: a tensor with I13 = 0, integrated with SciPy from the
-ss series start (``suslov.integrate``), for the map (p, d) <- I (corrected Theorem 5.2 p).
+ss series start (``suslov.simulator.integrate``), for the map (p, d) <- I (corrected Theorem 5.2 p).
 """
 import warnings
 
 import mpmath
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from derivations.poisson_taylor import ss_through
-from generated.suslov_formulas import scattering_angle, scattering_angle_mp, special_case_parameters
-from suslov.body import make_body
-from suslov.integrate import numeric_angle
+from derivations.sections.poisson_taylor import ss_through
+from generated.suslov_formulas import (
+    scattering_angle,
+    scattering_angle_mp,
+    special_case_parameters,
+)
+from suslov.simulator.body import make_body
+from suslov.simulator.integrate import numeric_angle
 
 
 @pytest.mark.parametrize("p,d", [(0.7, 0.3), (2.0, 5.0), (4.0, 1.0), (1.3, 20.0)])

@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 
 import generated.suslov_formulas as gf
-from suslov import engine, integrate, taylor
-from suslov.cli import main
-from suslov.engine import execute
-from suslov.planner import make_plan
-from suslov.scene import SceneError, load_scene
-from suslov.sleigh import Sleigh
+from suslov.simulator import engine, integrate, taylor
+from suslov.simulator.cli import main
+from suslov.simulator.engine import execute
+from suslov.simulator.planner import make_plan
+from suslov.simulator.scene import SceneError, load_scene
+from suslov.simulator.sleigh import Sleigh
 from suslov.validated import scattering_angle_enclosure
 
 SCENES = sorted((Path(__file__).resolve().parent.parent / "scenes").glob("*.toml"))
@@ -114,7 +114,7 @@ def test_odd_p_gamma_uses_closed_form_and_matches_integration(tmp_path, monkeypa
 def test_integrator_started_on_the_limit_axis_is_guarded():
     """gamma0 = (-1, 0, 0) at t0 = -30 (the field is ~1e-13 there): the bounded step still follows the
     transition; reference: the certified ss solution (differs from this start by ~e^-30)."""
-    from suslov.body import make_body
+    from suslov.simulator.body import make_body
     body = make_body(p=3, d=0.5)
     t = np.linspace(-30, 30, 7)
     for method in ("RK45", "DOP853", "LSODA"):
@@ -199,8 +199,8 @@ def test_refuses_to_overwrite_foreign_directory(tmp_path):
 
 
 def test_explain_prints_plan_without_running(tmp_path, monkeypatch, capsys):
-    import suslov.cli
-    forbid(monkeypatch, (suslov.cli, "execute"), (suslov.cli, "write_outputs"))
+    import suslov.simulator.cli
+    forbid(monkeypatch, (suslov.simulator.cli, "execute"), (suslov.simulator.cli, "write_outputs"))
     assert main(["simulate", str(SCENES[0]), "--explain"]) == 0
     assert "omega" in capsys.readouterr().out
 
@@ -211,7 +211,7 @@ def test_sleigh_scene_text_and_title_give_the_same_angle():
     import math
     import tomllib
 
-    from suslov.sleigh import TURNING_FORMULA, Sleigh
+    from suslov.simulator.sleigh import TURNING_FORMULA, Sleigh
 
     scene = tomllib.loads((Path(__file__).resolve().parent.parent / "scenes" / "fig3_sleigh.toml").read_text(encoding="utf-8"))
     body = scene["body"]
@@ -229,13 +229,13 @@ def test_one_method_vocabulary_in_scenes_and_docs():
     import re
     import tomllib
 
-    from suslov.scene import METHODS
+    from suslov.simulator.scene import METHODS
 
     root = Path(__file__).resolve().parent.parent
     for path in SCENES:
         method = tomllib.loads(path.read_text(encoding="utf-8")).get("numerics", {}).get("method")
         assert method is None or method in METHODS, (path.name, method)
-    for doc in (root / "README.md", root / "scenes" / "README.md"):
+    for doc in (root / "README.md", root / "docs" / "simulator.md", root / "scenes" / "README.md"):
         for method in re.findall(r'method = "([^"]+)"', doc.read_text(encoding="utf-8")):
             assert method in METHODS, (doc.name, method)
 
@@ -252,7 +252,7 @@ def test_report_table_survives_a_pipe_in_a_cell():
     """report.md's step table broke on an unescaped '|' in a method text."""
     from types import SimpleNamespace
 
-    from suslov.engine import _report
+    from suslov.simulator.engine import _report
 
     scene = SimpleNamespace(name="s", description="", path=Path("s.toml"))
     plan = SimpleNamespace(scene=scene, explain=lambda: "plan")

@@ -14,9 +14,10 @@ import numpy as np
 import pytest
 
 import generated.suslov_formulas as gf
-from suslov import executor, sweep
-from suslov.cli import main
-from suslov.scene import SceneError, load_scene
+from suslov import executor
+from suslov.simulator import sweep
+from suslov.simulator.cli import main
+from suslov.simulator.scene import SceneError, load_scene
 from suslov.validated import scattering_angle_enclosure
 
 GRID = """
@@ -268,8 +269,8 @@ def test_enclosure_effect_in_a_sweep_contains_the_float_angle(tmp_path):
 
 
 def test_readme_quotes_the_general_body_study_as_it_is(tmp_path):
-    """README's study figures (bodies, points, angle range, energy spread) are those of the study's own output:
-    run it, compare with the committed summary (bench/results/general_body_study.json), then the README with both."""
+    """The study figures in docs/simulator.md (bodies, points, angle range, energy spread) are those of the study's own output:
+    run it, compare with the committed summary (bench/results/general_body_study.json), then the page with both."""
     import json
     import re
 
@@ -282,7 +283,7 @@ def test_readme_quotes_the_general_body_study_as_it_is(tmp_path):
     assert angles["min"] == pytest.approx(committed["angle_min"], abs=1e-9)
     spread = summary["columns"]["energy_spread"]["max"]
     assert spread <= 4 * committed["energy_spread_max"]           # rounding-level, CPU-dependent in its digits
-    readme = (root / "README.md").read_text(encoding="utf-8")
+    readme = (root / "docs" / "simulator.md").read_text(encoding="utf-8")
     assert f"{committed['points']} points ({committed['bodies']} bodies at {committed['energies']} energies" in readme
     assert f"ranges from {committed['angle_min']:.2f} to pi" in readme
     quoted = float(re.search(r"largest spread ([0-9.e+-]+) rad over the (\d+) bodies", readme).group(1))

@@ -1,8 +1,8 @@
-"""heyoka Taylor route (suslov.taylor) against independent references.
+"""heyoka Taylor route (suslov.simulator.taylor) against independent references.
 
 Expected values come from the certified closed forms (``scattering_angle``, ``gamma_basis``), the
 rigorous ball enclosure (``suslov.validated``) and the SciPy route's own series start
-(``integrate.ss_initial``), never from suslov.taylor itself.
+(``integrate.ss_initial``), never from suslov.simulator.taylor itself.
 """
 import doctest
 
@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 from generated import suslov_formulas as gf
-from suslov import integrate, taylor
-from suslov.body import make_body
+from suslov.simulator import integrate, taylor
+from suslov.simulator.body import make_body
 from suslov.validated import scattering_angle_enclosure
 
-pytest.importorskip("heyoka")   # suslov.taylor imports it only when an integrator is built
+pytest.importorskip("heyoka")   # suslov.simulator.taylor imports it only when an integrator is built
 
 GENERAL = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]
 

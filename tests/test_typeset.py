@@ -1,9 +1,16 @@
-"""Publication typesetting (derivations/typeset.py): unambiguous notation and line breaking."""
+"""Publication typesetting (derivations/core/typeset.py): unambiguous notation and line breaking."""
 import re
 
 import sympy as sp
 
-from derivations.typeset import LINE_WIDTH, break_sum, breakable_product, clauses, latex, visible_width
+from derivations.core.typeset import (
+    LINE_WIDTH,
+    break_sum,
+    breakable_product,
+    clauses,
+    latex,
+    visible_width,
+)
 
 t, d, c, w1, w2 = sp.symbols("t d c omega_1 omega_2")
 T, S = sp.tanh(t), sp.sech(t)

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from derivations.pipeline import ROOT, VOLATILE
+from derivations.output.pipeline import ROOT, VOLATILE
 
 pytest.importorskip("build")
 

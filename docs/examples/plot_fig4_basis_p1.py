@@ -14,10 +14,10 @@ from pathlib import Path
 import numpy as np
 
 import suslov
-from suslov.engine import execute
-from suslov.figures import figure
-from suslov.planner import make_plan
-from suslov.scene import load_scene
+from suslov.simulator.engine import execute
+from suslov.simulator.figures import figure
+from suslov.simulator.planner import make_plan
+from suslov.simulator.scene import load_scene
 
 REPO = Path(suslov.__file__).resolve().parents[1]
 scene = load_scene(REPO / "scenes" / "fig4_basis_p1.toml")

@@ -16,8 +16,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import suslov
-from suslov.scene import load_scene
-from suslov.sweep import plan_sweep, run_sweep
+from suslov.simulator.scene import load_scene
+from suslov.simulator.sweep import plan_sweep, run_sweep
 
 REPO = Path(suslov.__file__).resolve().parents[1]
 text = (REPO / "scenes" / "general_body_study.toml").read_text().replace("count = 41", "count = 21")

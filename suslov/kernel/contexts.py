@@ -3,7 +3,7 @@
 The build prints each closed form once, as a function ``f(ctx, ...)`` that takes its
 elementary functions from ``ctx`` (the shape of mpmath's ``ctx_fp``/``ctx_mp``).  This
 module provides the two run-time contexts; the build's round-trip certificate passes a
-third, symbolic context (``derivations.roundtrip``) to the *same emitted function* and
+third, symbolic context (``derivations.output.roundtrip``) to the *same emitted function* and
 compares the result with the certified expression exactly.
 
 ``FLOAT.sech`` is ``2 e^-|t| / (1 + e^-2|t|)``, which cannot overflow; ``MP`` uses

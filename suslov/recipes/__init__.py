@@ -6,7 +6,7 @@ A recipe is the construction of a certified object, written with ring operations
 the result exactly for every p; the generated module runs the very same function on
 :class:`suslov.kernel.sparse.Sparse` polynomials whose coefficients are ``Fraction`` or
 ``mpmath`` numbers for a numeric d.  So the formula is not implemented twice, and the
-build's round trip (``derivations/roundtrip.py``) re-runs the module's entry points in
+build's round trip (``derivations/output/roundtrip.py``) re-runs the module's entry points in
 exact arithmetic and compares them with the certified objects.
 
 * :mod:`.integrals`  P1, P2, P3 of the first integral for odd p (section 6.2, Theorem 6.2);

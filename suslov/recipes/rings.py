@@ -1,6 +1,6 @@
 """Run-time ring adapters for the recipes: numeric d, exact (Fraction), mpmath or ball coefficients.
 
-The build's adapters (python-flint, symbolic d) live in ``derivations/recipe_rings.py``;
+The build's adapters (python-flint, symbolic d) live in ``derivations/core/recipe_rings.py``;
 these are the ones the generated module uses.  Each adapter provides exactly the
 operations listed in the recipe's docstring.
 """

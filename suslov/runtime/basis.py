@@ -118,7 +118,7 @@ def series_float(core, p: int, d: float) -> np.ndarray:
 
 
 def careful_phase(p: int, d: float, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """cos, sin of (p/d) t in mpmath with enough digits for any |phase| (used beyond phase.PHASE_LIMIT)."""
+    """cos, sin of (p/d) t in mpmath with enough digits for any phase (used beyond ``phase.PHASE_LIMIT``)."""
     cos_out, sin_out = np.empty(t.shape), np.empty(t.shape)
     for index, tv in np.ndenumerate(t):
         size = abs(p * tv / d)

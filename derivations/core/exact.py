@@ -1,0 +1,193 @@
+"""Exact zero tests in canonical polynomial / rational-function domains.
+
+An identity ``expr == 0`` is certified by bringing ``expr`` to a canonical form
+in a ring where "zero" is decidable (DESIGN.md, "Certification"):
+
+1. ``expr`` is written over a common denominator, ``num/den``, with ``num`` and
+   ``den`` polynomials over Q in the generators of the domain;
+2. algebraic quantities are explicit extension symbols with a monic quadratic
+   relation ``s**2 = D`` (for example ``c**2 = d**2 + 1`` for
+   ``c = sqrt(d^2+1)``, ``r**2 = I11*I22`` for ``sqrt(I11*I22)``, and
+   ``S**2 = 1 - T**2`` tying ``S = sech t`` to ``T = tanh t``);
+3. ``num`` is reduced modulo the relations.  The leading monomials ``s_i**2``
+   are pairwise coprime, so the relations form a Groebner basis (Buchberger's
+   first criterion) and the remainder is a unique normal form: the identity
+   holds iff the remainder is the zero polynomial.  The denominator is reduced
+   too, and must not vanish.
+
+An identity in ``Q(x)[s]/(s**2 - D)`` holds for *both* roots ``s = +-sqrt(D)``,
+which is how "both sign choices" are certified at once.  A non-zero remainder
+is a refutation when the quotient ring is a domain (``D`` not a square), which
+holds for every extension used here.  ``simplify`` is never called.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from derivations.core.certificates import (
+    Certificate,
+    CertificateLog,
+    Outcome,
+    stopwatch,
+)
+
+
+@dataclass(frozen=True)
+class Extension:
+    """An algebraic generator ``symbol`` with ``symbol**2 == square``."""
+
+    symbol: sp.Symbol
+    square: sp.Expr
+    meaning: str
+
+    def relation(self) -> sp.Expr:
+        return self.symbol**2 - self.square
+
+
+@dataclass(frozen=True)
+class Domain:
+    """Q(variables)[extensions] with the extensions' quadratic relations.
+
+    ``name`` is what certificates print as the method's domain.
+    """
+
+    name: str
+    extensions: tuple[Extension, ...] = ()
+
+    def extension_symbols(self) -> tuple[sp.Symbol, ...]:
+        return tuple(e.symbol for e in self.extensions)
+
+    def with_extensions(self, name: str, *more: Extension) -> "Domain":
+        return Domain(name, self.extensions + tuple(more))
+
+
+@dataclass(frozen=True)
+class NormalForm:
+    """The reduced numerator and denominator of an expression."""
+
+    numerator: sp.Poly
+    denominator: sp.Poly
+    terms_tested: int
+
+    @property
+    def is_zero(self) -> bool:
+        return self.numerator.is_zero
+
+
+def _generators(expr: sp.Expr, domain: Domain) -> list[sp.Symbol]:
+    ext = list(domain.extension_symbols())
+    symbols = set(expr.free_symbols)
+    for e in domain.extensions:
+        symbols |= sp.sympify(e.square).free_symbols  # the relations' variables are generators too
+    rest = sorted((s for s in symbols if s not in ext), key=sp.default_sort_key)
+    # a constant still needs one generator to be a Poly
+    return ext + rest or [sp.Symbol("_constant")]
+
+
+def _reduce(poly_expr: sp.Expr, gens: list[sp.Symbol], domain: Domain) -> sp.Poly:
+    poly = sp.Poly(poly_expr, *gens, domain="QQ")
+    if not domain.extensions:
+        return poly
+    relations = [sp.Poly(e.relation(), *gens, domain="QQ") for e in domain.extensions]
+    _, remainder = sp.reduced(poly, relations, *gens, order="lex", domain="QQ")
+    return sp.Poly(remainder, *gens, domain="QQ")
+
+
+IMAGINARY = Extension(sp.Symbol("i_"), sp.Integer(-1), "i_ = sqrt(-1)")
+
+
+def normal_form(expr: sp.Expr, domain: Domain) -> NormalForm:
+    """Canonical (numerator, denominator) of ``expr`` in ``domain``.
+
+    ``expr`` must be a rational expression in its symbols (no functions):
+    callers replace ``tanh t`` etc. by ring generators first.  The imaginary
+    unit, where it occurs, becomes the generator ``i_`` with ``i_**2 = -1``.
+    """
+    expr = sp.sympify(expr)
+    if expr.has(sp.I):
+        expr = expr.subs(sp.I, IMAGINARY.symbol)
+        domain = domain.with_extensions(domain.name, IMAGINARY)
+    if expr.atoms(sp.Function):
+        names = sorted({type(f).__name__ for f in expr.atoms(sp.Function)})
+        raise ValueError(
+            f"normal_form needs a rational expression; found functions {names}: "
+            "substitute them by ring generators first"
+        )
+    num, den = sp.fraction(sp.together(expr))
+    gens = _generators(num * den, domain)
+    expanded = sp.expand(num)
+    terms = len(sp.Add.make_args(expanded))
+    return NormalForm(_reduce(expanded, gens, domain), _reduce(sp.expand(den), gens, domain), terms)
+
+
+def is_identically_zero(expr: sp.Expr, domain: Domain) -> bool:
+    """Decide ``expr == 0`` in ``domain`` (raises if the denominator vanishes)."""
+    form = normal_form(expr, domain)
+    if form.denominator.is_zero:
+        raise ZeroDivisionError("denominator vanishes identically in the domain")
+    return form.is_zero
+
+
+def certify_zero(
+    log: CertificateLog,
+    claim: str,
+    label: str,
+    expr,
+    domain: Domain,
+    *,
+    expect: Outcome = Outcome.PASS,
+) -> Certificate:
+    """Certify ``expr == 0`` (or each entry of a list/Matrix) in ``domain``.
+
+    ``expect=Outcome.FAIL`` records a claim that the derivation predicts to be
+    false (a printed form refuted); the build fails only on a surprise.
+    """
+    exprs = list(expr) if isinstance(expr, (list, tuple, sp.MatrixBase)) else [expr]
+    outcome, work, detail = Outcome.PASS, 0, ""
+    with stopwatch() as elapsed:
+        for index, item in enumerate(exprs):
+            try:
+                form = normal_form(item, domain)
+            except Exception as exc:  # unsupported input is "unknown", not a pass
+                outcome, detail = Outcome.UNKNOWN, f"entry {index}: {type(exc).__name__}: {exc}"
+                break
+            work += form.terms_tested
+            if form.denominator.is_zero:
+                outcome, detail = Outcome.UNKNOWN, f"entry {index}: denominator vanishes"
+                break
+            if not form.is_zero:
+                outcome = Outcome.FAIL
+                monom, coeff = form.numerator.terms()[0]
+                leading = coeff * sp.Mul(*(g**e for g, e in zip(form.numerator.gens, monom)))
+                detail = (
+                    f"entry {index}: normal form has {len(form.numerator.terms())} "
+                    f"non-zero terms, leading {str(leading)[:80]}"
+                )
+                break
+    if outcome is Outcome.PASS:
+        detail = f"{len(exprs)} identit{'y' if len(exprs) == 1 else 'ies'}, {work} terms reduced to 0"
+    method = f"exact zero test in {domain.name}"
+    return log.record(
+        Certificate(claim, label, method, outcome, elapsed[0], work, detail, expected=expect)
+    )
+
+
+def certify_polys_zero(log: CertificateLog, claim: str, label: str, polys, domain_name: str, *,
+                       expect: Outcome = Outcome.PASS, seconds: float = 0.0) -> Certificate:
+    """Record the zero test of polynomials already held in a canonical domain.
+
+    For ``sympy.Poly`` objects over a field such as ``QQ(d)``: their dense
+    representation is canonical, so ``is_zero`` decides the identity.
+    ``seconds`` adds the cost of building the polynomials.
+    """
+    polys = list(polys)
+    with stopwatch() as elapsed:
+        nonzero = [i for i, poly in enumerate(polys) if not poly.is_zero]
+    work = sum(len(poly.terms()) for poly in polys)
+    outcome = Outcome.FAIL if nonzero else Outcome.PASS
+    detail = (f"entry {nonzero[0]} has {len(polys[nonzero[0]].terms())} non-zero terms" if nonzero
+              else f"{len(polys)} polynomial(s) identically 0")
+    return log.record(Certificate(claim, label, f"exact zero test in {domain_name}", outcome,
+                                  elapsed[0] + seconds, work, detail, expected=expect))

@@ -1,0 +1,74 @@
+"""PDF of the generated LaTeX, written outside the tracked tree (``build_formulas.py --pdf``).
+
+The documents ``\\input`` their tables from the generated directory, so pdflatex runs there
+with ``-output-directory`` pointing elsewhere (default ``build/pdf/``, git-ignored): two
+passes (longtable settles on the second), nothing written into ``generated/``.  TeX
+by-products that a user leaves in ``generated/`` by compiling in place (``*.aux``,
+``*.log``, ``*.pdf``, ...) are not build outputs: ``--check`` ignores them and a rebuild
+keeps them (:data:`TEX_BYPRODUCTS`, used by ``derivations.output.pipeline``).
+"""
+from __future__ import annotations
+
+import fnmatch
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+TEX_BYPRODUCTS = ("*.aux", "*.log", "*.pdf", "*.out", "*.toc", "*.fls", "*.fdb_latexmk", "*.synctex.gz", "*.dvi")
+DOCUMENTS = ("suslov_formulas.tex", "certificates.tex")
+
+
+OVERFULL = re.compile(r"Overfull \\hbox \(([\d.]+)pt too wide\) (?:in paragraph at lines (\d+)--\d+|in alignment at "
+                      r"lines (\d+)--\d+|detected at line (\d+))")
+FONT_PROBLEMS = re.compile(r"Missing character: There is no .*|LaTeX Font Warning: .*")
+TOLERANCE_PT = 1.0
+
+
+def layout_problems(log_text: str, tolerance_pt: float = TOLERANCE_PT) -> list[str]:
+    """Typesetting faults in a pdflatex log: overfull boxes wider than ``tolerance_pt``, missing
+    characters and font substitutions, one line each (with the source line TeX reports)."""
+    problems = [f"overfull hbox {float(m.group(1)):.1f} pt at line {next(g for g in m.groups()[1:] if g)}"
+                for m in OVERFULL.finditer(log_text) if float(m.group(1)) > tolerance_pt]
+    return problems + [m.group(0).strip() for m in FONT_PROBLEMS.finditer(log_text)]
+
+
+def page_count(log_text: str) -> int:
+    """Pages of the PDF, as pdflatex reports them at the end of its log ("Output written on ... (N pages")."""
+    # TeX wraps log lines at 79 characters, also inside a long output path
+    found = re.findall(r"Output written on .*?\((\d+) pages?", log_text.replace("\n", ""))
+    return int(found[-1]) if found else 0
+
+
+class PdfError(RuntimeError):
+    """pdflatex is missing or failed; the message says which and where the log is."""
+
+
+def is_byproduct(name: str) -> bool:
+    return any(fnmatch.fnmatch(name, pattern) for pattern in TEX_BYPRODUCTS)
+
+
+def compile_pdfs(source: Path, outdir: Path, passes: int = 2) -> list[Path]:
+    """Compile the documents of ``source`` into ``outdir``; returns the PDFs written."""
+    if shutil.which("pdflatex") is None:
+        raise PdfError("pdflatex not found (Debian: apt-get install texlive-latex-base)")
+    source, outdir = Path(source).resolve(), Path(outdir).resolve()
+    outdir.mkdir(parents=True, exist_ok=True)
+    written = []
+    for document in DOCUMENTS:
+        if not (source / document).is_file():
+            raise PdfError(f"{source / document}: no such document (build first)")
+        for _ in range(passes):
+            proc = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error",
+                                   f"-output-directory={outdir}", document], cwd=source, capture_output=True,
+                                  text=True, timeout=600)
+            if proc.returncode != 0:
+                raise PdfError(f"pdflatex failed on {document}; see {outdir / Path(document).with_suffix('.log')}")
+        written.append(outdir / Path(document).with_suffix(".pdf").name)
+    return written
+
+
+def document_report(pdf: Path) -> tuple[int, list[str]]:
+    """(pages, layout problems) of a PDF compiled by :func:`compile_pdfs`, read from its log."""
+    log_text = Path(pdf).with_suffix(".log").read_text(encoding="latin-1")
+    return page_count(log_text), layout_problems(log_text)

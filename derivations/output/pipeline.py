@@ -1,0 +1,324 @@
+"""derive -> certify -> render, with an all-or-nothing write of ``generated/``.
+
+The pipeline runs the derivations of ``derivations.registry`` in dependency
+order, collecting certificates in one :class:`CertificateLog`.  A certificate
+whose outcome differs from the expected one raises
+:class:`CertificationFailure` at once, naming the claim; nothing is rendered.
+
+Rendering writes every output into a fresh temporary directory beside the
+target and only then swaps it into place, so the target is either the old
+tree or the complete new one, never a mixture.
+
+Determinism: the committed outputs carry no timing, no timestamp and no
+absolute path.  The cost of each certificate (seconds) is volatile and goes
+into ``certificate_costs.json`` / ``certificate_costs.tex`` only, and the measured values
+of floating-point evidence (CPU-dependent in their last digits) into
+``certificate_measurements.json``; those files are ignored by git, by ``--check`` and by the
+reproducibility test, and the LaTeX document includes the cost table when it is present.
+"""
+from __future__ import annotations
+
+import filecmp
+import json
+import math
+import shutil
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from derivations.core.certificates import CertificateLog, Outcome
+from derivations.core.emit import emitted_formulas
+from derivations.core.options import BuildOptions
+from derivations.output import public_api
+from derivations.output.pdf import is_byproduct
+from derivations.output.render import render
+from derivations.registry import DERIVATIONS, resolve
+from suslov import outdir
+
+ROOT = Path(__file__).resolve().parents[2]   # the repository (derivations/<layer>/this file)
+GENERATED = ROOT / "generated"
+VOLATILE = ("certificate_costs.json", "certificate_costs.tex", "certificate_measurements.json", "cache_report.json")
+
+# the derivations the generated module's formulas come from (and --verify runs)
+MODULE_NEEDS = ("model", "special_case", "kovalevskaya", "meromorphic", "first_integrals", "scattering")
+# (template, output file, derivations the output needs)
+OUTPUTS = (
+    ("init.py.j2", "__init__.py", ()),
+    ("suslov_formulas.py.j2", "suslov_formulas.py", MODULE_NEEDS),
+    ("suslov_formulas.tex.j2", "suslov_formulas.tex", ()),
+    ("formulas_body.tex.j2", "formulas_body.tex", ()),
+    ("certificates.tex.j2", "certificates.tex", ()),
+    ("certificates_table.tex.j2", "certificates_table.tex", ()),
+    ("errata_table.tex.j2", "errata_table.tex", ()),
+    ("per_p_table.tex.j2", "per_p_table.tex", ("special_case",)),
+    ("integrals_table.tex.j2", "integrals_table.tex", ("first_integrals",)),
+    ("basis_tables.tex.j2", "basis_tables.tex", ("meromorphic",)),
+    ("monodromy_tables.tex.j2", "monodromy_tables.tex", ("residue",)),
+    ("galois_tables.tex.j2", "galois_tables.tex", ("galois",)),
+    ("certificate_costs.tex.j2", "certificate_costs.tex", ()),
+)
+
+
+@dataclass
+class Build:
+    options: BuildOptions
+    names: list[str]
+    log: CertificateLog
+    results: dict = field(default_factory=dict)
+    seconds: dict = field(default_factory=dict)
+    round_trip_done: bool = False
+
+
+def time_left(elapsed: float, done: int, total: int, elapsed_at_half: float | None = None) -> float | None:
+    """Seconds left in a per-p phase, extrapolated with the growth of the cumulative time.
+
+    Per-p work grows like a power of p, so the cumulative time after i of n steps grows like
+    i^k; k is estimated from the time at i and at i/2 (k >= 1: never faster than linear),
+    and the remaining time is elapsed ((n/i)^k - 1).  None until there is enough to go on.
+    """
+    if done < 2 or elapsed <= 0:
+        return None
+    k = 1.0
+    if elapsed_at_half:
+        k = max(1.0, min(6.0, math.log(elapsed / elapsed_at_half) / math.log(done / (done // 2))))
+    return elapsed * ((total / done) ** k - 1.0)
+
+
+class Progress:
+    """One line per derivation; on a terminal also a live counter and, in per-p phases, the p reached
+    and an estimate of the time left (when stderr is not a terminal: only the line per derivation)."""
+
+    def __init__(self, stream=sys.stderr, quiet: bool = False):
+        self.stream, self.quiet = stream, quiet
+        self.live = hasattr(stream, "isatty") and stream.isatty()
+        self.count = 0
+        self.phase_text = ""
+
+    def start(self, index: int, total: int, name: str):
+        self.prefix, self.count, self.t0 = f"[{index}/{total}] {name}", 0, time.perf_counter()
+        self.phase_text, self.phase_start, self.phase_times = "", None, {}
+        if not self.quiet and self.live:
+            self.stream.write(f"{self.prefix} ...")
+            self.stream.flush()
+
+    def _show(self):
+        if not self.quiet and self.live:
+            line = f"{self.prefix}: {self.count} certificates, {time.perf_counter() - self.t0:.1f} s{self.phase_text}"
+            self.stream.write("\r" + line.ljust(100)[:160])
+            self.stream.flush()
+
+    def certificate(self, cert):
+        self.count += 1
+        self._show()
+
+    def phase(self, label: str, done: int, total: int, value):
+        now = time.perf_counter()
+        if done == 0 or self.phase_start is None:
+            self.phase_start, self.phase_times = now, {}
+        elapsed = now - self.phase_start
+        self.phase_times[done] = elapsed
+        left = time_left(elapsed, done, total, self.phase_times.get(done // 2))
+        estimate = f", about {left:.0f} s left" if left is not None and done < total else ""
+        self.phase_text = f"; {label}: p = {value} ({done}/{total}){estimate}"
+        self._show()
+
+    def done(self):
+        if not self.quiet:
+            line = f"{self.prefix}: {self.count} certificates, {time.perf_counter() - self.t0:.2f} s"
+            self.stream.write(("\r" + line.ljust(100)[:160].rstrip() if self.live else line) + "\n")
+            self.stream.flush()
+
+
+def derive(options: BuildOptions, only: list[str] | None = None, progress: Progress | None = None) -> Build:
+    """Run and certify the derivations (raises CertificationFailure)."""
+    names = resolve(only)
+    progress = progress or Progress(quiet=True)
+    log = CertificateLog(on_record=progress.certificate, on_phase=progress.phase, workers=options.jobs,
+                         scheduler=options.scheduler, cache=options.cache)
+    build = Build(options, names, log)
+    for index, name in enumerate(names, 1):
+        module = DERIVATIONS[name]
+        progress.start(index, len(names), name)
+        start = time.perf_counter()
+        with log.section(name):
+            required = [build.results[req] for req in getattr(module, "REQUIRES", ())]
+            build.results[name] = module.run(log, options, *required)
+        build.seconds[name] = time.perf_counter() - start
+        progress.done()
+    return build
+
+
+EMITTED_ORDER = ("omega", "omega_general", "lambda_squared", "p_squared_i13_zero", "p_squared_i23_zero",
+                 "special_parameters", "scattering_angle")
+
+
+def _scattering_keys(build: Build) -> str:
+    if "scattering" not in build.results:
+        return "-"
+    return ", ".join(f"{k} {v}" for k, v in sorted(build.results["scattering"].exports["certificates"].items()))
+
+
+def context(build: Build) -> dict:
+    """Everything the templates see (deterministic apart from ``costs``)."""
+    certificates = [c.deterministic_record() for c in build.log.certificates]
+    results = [build.results[name] for name in build.names]
+    errata = [e for r in results for e in r.errata]
+    by_key = {c["key"]: c for c in certificates}
+    return {
+        "pmax": build.options.pmax,
+        "odd_ps": build.options.odd_p_values(),
+        "even_ps": build.options.even_p_values(),
+        "names": build.names,
+        "titles": {name: DERIVATIONS[name].TITLE for name in build.names},
+        "results": results,
+        "certificates": certificates,
+        "certificate_by_key": by_key,
+        "errata": errata,
+        "per_p": build.results["special_case"].exports["per_p"] if "special_case" in build.results else [],
+        "emitted": {name: item.source() for name, item in emitted_formulas(build).items()},
+        "emitted_order": [name for name in EMITTED_ORDER if name in emitted_formulas(build)],
+        "basis_sigma": dict(sorted(build.results["meromorphic"].exports["sigma"].items()))
+        if "meromorphic" in build.results else {},
+        "scattering_certificates": _scattering_keys(build),
+        "public_api": public_api.sections(_scattering_keys(build)),
+        "integral_ps": [r["p"] for r in build.results["first_integrals"].exports["rows"]]
+        if "first_integrals" in build.results else [],
+        "basis_ps": [r["p"] for r in build.results["meromorphic"].exports["rows"]]
+        if "meromorphic" in build.results else [],
+        "scattering": build.results["scattering"].exports if "scattering" in build.results else None,
+        "galois_rows": build.results["galois"].exports["log_rows"] if "galois" in build.results else [],
+        "prop_rows": build.results["galois"].exports["prop_rows"] if "galois" in build.results else [],
+        "log_rows": build.results["residue"].exports["log_rows"] if "residue" in build.results else [],
+        "body_rows": build.results["residue"].exports["body_rows"] if "residue" in build.results else [],
+        "basis_rows": build.results["meromorphic"].exports["rows"] if "meromorphic" in build.results else [],
+        "basis_tables": build.results["meromorphic"].exports["tables"] if "meromorphic" in build.results else {},
+        "integral_rows": build.results["first_integrals"].exports["rows"] if "first_integrals" in build.results else [],
+        "counts": {o.value: sum(1 for c in build.log.certificates if c.outcome is o) for o in Outcome},
+        "refuted": sum(1 for c in build.log.certificates if c.expected is Outcome.FAIL),
+        "costs": [(c.key, c.claim, c.seconds) for c in build.log.certificates],
+        "total_seconds": build.log.total_seconds(),
+    }
+
+
+def certificate_document(build: Build) -> dict:
+    ctx = context(build)
+    return {
+        "pmax": ctx["pmax"],
+        "derivations": ctx["names"],
+        "certificates": ctx["certificates"],
+        "errata": [vars(e) for e in ctx["errata"]],
+        "notes": {r.name: r.notes for r in ctx["results"]},
+    }
+
+
+def render_into(build: Build, directory: Path) -> list[str]:
+    """Write every output whose derivations ran into ``directory``."""
+    ctx = context(build)
+    written = []
+    for template, filename, needs in OUTPUTS:
+        if all(n in build.results for n in needs):
+            (directory / filename).write_text(render(template, ctx), encoding="utf-8")
+            written.append(filename)
+    (directory / "certificates.json").write_text(
+        json.dumps(certificate_document(build), indent=1, sort_keys=True) + "\n", encoding="utf-8")
+    (directory / "certificate_costs.json").write_text(
+        json.dumps({k: round(s, 6) for k, _, s in ctx["costs"]}, indent=1, sort_keys=True) + "\n",
+        encoding="utf-8")
+    (directory / "certificate_measurements.json").write_text(
+        json.dumps({c.key: c.measured for c in build.log.certificates if c.measured}, indent=1, sort_keys=True)
+        + "\n", encoding="utf-8")
+    (directory / "cache_report.json").write_text(
+        json.dumps(build.log.cache_report, indent=1, sort_keys=True) + "\n", encoding="utf-8")
+    return written + ["certificates.json", "certificate_costs.json", "certificate_measurements.json",
+                      "cache_report.json"]
+
+
+BUILD_TOOL = "build_formulas.py"
+BUILD_SIGNATURE = "certificates.json"   # recognises build outputs written before the marker existed
+
+
+def claim_output(target: Path) -> Path:
+    """``target`` as an absolute path the build may replace (:func:`suslov.outdir.claim`: refuses a file,
+    a foreign directory or an unwritable place with :class:`suslov.outdir.OutputRefused`)."""
+    return outdir.claim(target, BUILD_TOOL, BUILD_SIGNATURE)
+
+
+def write_atomically(build: Build, target: Path) -> None:
+    """Render into a staging sibling, then swap it into ``target`` (crash-safe: :mod:`suslov.outdir`)."""
+    target = claim_output(target)
+    outdir.make_dir(target.parent)
+    staging = outdir.new_staging(target, BUILD_TOOL)
+    try:
+        if render_into(build, staging).count("suslov_formulas.py") and not build.round_trip_done:
+            # certify the module as emitted, then render again so the round-trip certificates are in every output
+            from derivations.output.roundtrip import certify_module
+
+            certify_module(build.log, build, staging)
+            build.round_trip_done = True
+            render_into(build, staging)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    swap_in(staging, target)
+
+
+def install_tree(source: Path, target: Path) -> None:
+    """Copy the files of ``source`` (a cached build) into ``target``, swapped in like a fresh build."""
+    target = claim_output(target)
+    outdir.make_dir(target.parent)
+    staging = outdir.new_staging(target, BUILD_TOOL)
+    try:
+        for item in Path(source).iterdir():
+            if item.is_file() and item.name not in ("manifest.json", outdir.MARKER):
+                shutil.copyfile(item, staging / item.name)
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    swap_in(staging, target)
+
+
+def swap_in(staging: Path, target: Path) -> None:
+    """Replace ``target`` by ``staging`` (:func:`suslov.outdir.swap_in`); TeX by-products of ``target`` are kept."""
+    if target.is_dir():  # a user's PDF (and the other TeX by-products) survives the rebuild
+        for item in target.iterdir():
+            if item.is_file() and is_byproduct(item.name) and not (staging / item.name).exists():
+                shutil.copyfile(item, staging / item.name)
+    outdir.swap_in(staging, target)
+
+
+def compare_trees(expected: Path, actual: Path) -> list[str]:
+    """Files that differ, are missing or are extra (volatile files and TeX by-products ignored)."""
+    def files(root: Path) -> set[str]:
+        if not root.exists():
+            return set()
+        return {str(p.relative_to(root)) for p in root.rglob("*")
+                if p.is_file() and p.name not in VOLATILE and "__pycache__" not in p.parts and not is_byproduct(p.name)}
+
+    left, right = files(expected), files(actual)
+    differing = sorted(left ^ right)
+    differing += sorted(f for f in left & right if not filecmp.cmp(expected / f, actual / f, shallow=False))
+    return differing
+
+
+def summary(build: Build, top: int = 5) -> str:
+    """Certificate summary with costs, for the console."""
+    certs = build.log.certificates
+    refuted = [c for c in certs if c.expected is Outcome.FAIL and c.outcome is Outcome.FAIL]
+    passed = sum(1 for c in certs if c.outcome is Outcome.PASS)
+    unknown = sum(1 for c in certs if c.outcome is Outcome.UNKNOWN)
+    lines = [f"{len(certs)} certificates, all as expected: {passed} claims proved (or corroborated, where the method "
+             f"says evidence), {len(refuted)} printed forms of the paper refuted as the derivation predicts (see the "
+             f"errata table), {unknown} unknown"]
+    for name in build.names:
+        n = sum(1 for c in certs if c.derivation == name)
+        lines.append(f"  {name:<16} {n:4d} certificates  {build.seconds[name]:8.3f} s")
+    trip = [c for c in certs if c.derivation == "roundtrip"]
+    if trip:
+        lines.append(f"  {'roundtrip':<16} {len(trip):4d} certificates  {sum(c.seconds for c in trip):8.3f} s"
+                     "  (the emitted module, as written)")
+    lines.append(f"costliest {min(top, len(certs))}:")
+    for c in sorted(certs, key=lambda c: -c.seconds)[:top]:
+        verdict = c.outcome.value + (" as predicted: the printed form is refuted" if c.expected is Outcome.FAIL else "")
+        lines.append(f"  {c.seconds:8.4f} s  [{c.label}] {c.claim} ({verdict})")
+    return "\n".join(lines)

@@ -1,0 +1,81 @@
+"""Jinja2 rendering of the derived results into LaTeX and Python.
+
+Two environments share one loader on ``templates/``:
+
+* ``*.tex.j2``: delimiters that do not clash with TeX braces
+  (``\\VAR{...}``, ``\\BLOCK{...}``, ``\\#{...}``);
+* ``*.py.j2``: Jinja's usual ``{{ }}``/``{% %}`` (Python rarely doubles braces).
+
+Both use ``autoescape=False``, ``trim_blocks=True`` and ``StrictUndefined``
+(a missing value is an error, never an empty string).  Filters turn SymPy
+expressions into Python source (``py``) and escape plain text for TeX
+(``tex``).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import jinja2
+import sympy as sp
+from sympy.printing.pycode import PythonCodePrinter
+
+from derivations.core.typeset import latex
+
+TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
+
+_TEX_SPECIALS = {
+    "\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
+    "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}",
+    "<": r"\textless{}", ">": r"\textgreater{}",
+}
+
+
+def tex_escape(text) -> str:
+    """Escape plain text for TeX (claims, notes, details)."""
+    return "".join(_TEX_SPECIALS.get(ch, ch) for ch in str(text))
+
+
+_BREAK_AFTER = ",/([=+"
+
+
+def tex_breakable(text) -> str:
+    """:func:`tex_escape`, with a permitted line break after punctuation inside long tokens
+    (``Q(I11,I22,I13,I23)[r,i]/(r^2-I11 I22)`` must fit a narrow column)."""
+    return "".join(_TEX_SPECIALS.get(ch, ch) + (r"\allowbreak{}" if ch in _BREAK_AFTER else "") for ch in str(text))
+
+
+class _ArithmeticPrinter(PythonCodePrinter):
+    """Plain arithmetic that works on floats, NumPy arrays and mpmath numbers."""
+
+    def _print_Pow(self, expr, rational=False):
+        base, exp = expr.as_base_exp()
+        if exp.is_Integer and exp > 0:
+            # parenthesised: the product may stand in a denominator (x/(y*y), not x/y*y)
+            factors = [self.parenthesize(base, sp.printing.precedence.PRECEDENCE["Mul"])] * int(exp)
+            return factors[0] if exp == 1 else "(" + "*".join(factors) + ")"
+        return super()._print_Pow(expr, rational)
+
+
+def python_source(expr) -> str:
+    """Python source for a rational expression in plain symbols."""
+    return _ArithmeticPrinter({"standard": "python3"}).doprint(sp.sympify(expr))
+
+
+def _environment(tex: bool) -> jinja2.Environment:
+    options = dict(loader=jinja2.FileSystemLoader(str(TEMPLATES)), autoescape=False, trim_blocks=True,
+                   lstrip_blocks=True, keep_trailing_newline=True, undefined=jinja2.StrictUndefined)
+    if tex:
+        options.update(block_start_string=r"\BLOCK{", block_end_string="}", variable_start_string=r"\VAR{",
+                       variable_end_string="}", comment_start_string=r"\#{", comment_end_string="}")
+    env = jinja2.Environment(**options)
+    env.filters["tex"] = tex_escape
+    env.filters["breakable"] = tex_breakable
+    env.filters["py"] = python_source
+    env.filters["latex"] = latex
+    return env
+
+
+def render(template: str, context: dict) -> str:
+    """Render ``templates/<template>`` with ``context``."""
+    env = _environment(tex=template.endswith(".tex.j2"))
+    return env.get_template(template).render(**context)

@@ -1,0 +1,288 @@
+"""Round trip: certify the generated module as emitted, not the derivation beside it.
+
+After rendering, the build imports ``suslov_formulas.py`` from the staging directory (or,
+with ``--verify DIR``, from any generated tree) and certifies the module itself:
+
+1. **Emitted formulas (exact).**  Every function printed from a certified expression
+   (``_omega``, ``_omega_general``, ``_lambda_squared``, ``_p_squared_i13_zero``,
+   ``_p_squared_i23_zero``, ``_special_parameters``, ``_scattering_angle``) is called with
+   a SymPy context (``ctx.tanh = sympy.tanh``, ...) and symbolic arguments; the result
+   minus the certified expression (bindings substituted) must have a zero numerator after
+   expansion, with tanh t, sech t and the square roots as independent indeterminates: an
+   exact zero test, stronger than needed.
+2. **Shared recipes (exact, every p).**  ``_integral_core(p, ring)`` and
+   ``_basis_core(p, ring)`` of the module are run on the build's python-flint rings
+   (symbolic d) and must equal the objects the derivations certified, polynomial by
+   polynomial; ``first_integral_coefficients(p, 3/7)`` must equal the certified
+   numerators evaluated at d = 3/7 and divided by their certified denominators (exact
+   Fractions), which checks the module's own scaling.
+3. **Float paths (numeric evidence, labelled so).**  Each float64 function is compared
+   with its mpmath twin at seeded points including the hard cases (large |t|, small and
+   large d, p near odd integers, large omega), for every p in range, against the error
+   bound stated in its docstring; ``gamma_basis_mp`` is compared with the certified numerators
+   evaluated exactly at rational points (every p) and the rows are checked to
+   form a rotation; ``special_case_parameters`` must chain into ``omega`` (the body's own
+   general solution in the returned frame); ``meromorphy`` must agree with
+   ``kovalevskaya_exponents`` in its special cases.
+
+A failure stops the build like any certificate (nothing is moved into place) and names
+the function, p and what differs; :func:`verify` returns the first discrepancy instead.
+"""
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import itertools
+import sys
+from fractions import Fraction
+from pathlib import Path
+
+import mpmath
+import sympy as sp
+
+from derivations.core.certificates import (
+    Certificate,
+    CertificateLog,
+    CertificationFailure,
+    Outcome,
+    stopwatch,
+)
+from derivations.core.recipe_rings import BASIS_RING, INTEGRAL_RING
+
+SECTION = "roundtrip"
+EXACT_METHOD = ("exact zero test of the emitted code evaluated with a SymPy context (numerator expanded in "
+                "Q(arguments)[tanh t, sech t, roots as indeterminates])")
+EVIDENCE = "numeric evidence (not a certificate): "
+_counter = itertools.count()
+
+
+class SymbolicContext:
+    """The emitted functions' elementary functions as SymPy functions."""
+
+    tanh = staticmethod(sp.tanh)
+    sech = staticmethod(sp.sech)
+    sqrt = staticmethod(sp.sqrt)
+    atan2 = staticmethod(sp.atan2)
+
+    @staticmethod
+    def tanh_sech(t):
+        return sp.tanh(t), sp.sech(t)
+
+
+def load_module(directory: Path):
+    """Import ``directory/suslov_formulas.py`` under a fresh private name (not ``generated``)."""
+    path = Path(directory) / "suslov_formulas.py"
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no generated module there")
+    name = f"_suslov_formulas_under_test_{next(_counter)}"
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    try:
+        spec.loader.exec_module(module)
+    finally:
+        sys.modules.pop(name, None)
+    return module
+
+
+def _record(log, claim, label, method, ok, seconds, work=0, detail=""):
+    return log.record(Certificate(claim, label, method, Outcome.PASS if ok else Outcome.FAIL, seconds, work, detail))
+
+
+# ------------------------------------------------------------------ 1. emitted formulas
+
+
+def _is_zero(expr) -> bool:
+    numerator = sp.numer(sp.together(sp.sympify(expr)))
+    return sp.expand(numerator) == 0
+
+
+def certify_emitted(log: CertificateLog, module, emitted: dict) -> list:
+    out = []
+    for name, item in emitted.items():
+        with stopwatch() as elapsed:
+            function = getattr(module, f"_{name}", None)
+            if function is None:
+                ok, detail = False, f"_{name} is missing from the module"
+            else:
+                try:
+                    values = function(SymbolicContext, *item.args)
+                except Exception as error:  # a broken emitted function is a failed round trip, with the reason
+                    values, detail = None, f"_{name} raised {type(error).__name__}: {error}"
+                if values is not None:
+                    values = values if isinstance(values, tuple) else (values,)
+                    reference = item.substituted()
+                    bad = [i for i, (v, r) in enumerate(zip(values, reference)) if not _is_zero(v - r)]
+                    ok = len(values) == len(reference) and not bad
+                    detail = ("emitted code equals the certified expression" if ok else
+                              f"output {bad[0] if bad else 'count'} differs: emitted {values[bad[0]] if bad else values}"
+                              f" vs certified {reference[bad[0]] if bad else reference}")
+                else:
+                    ok = False
+        out.append(_record(log, f"function _{name}: the emitted code equals the certified expression",
+                           "round trip", EXACT_METHOD, ok, elapsed[0], len(item.outputs), detail))
+    return out
+
+
+# ------------------------------------------------------------------ 2. shared recipes
+
+
+def _integral_at(ff, d: Fraction) -> dict:
+    """Certified P1, P2, P3 at a rational d, as homogeneous coefficient lists of Fractions."""
+    def value(poly):
+        total: dict = {}
+        for monomial, coefficient in zip(poly.monoms(), poly.coeffs()):
+            k = int(monomial[2])  # power of w2
+            total[k] = total.get(k, 0) + int(coefficient) * d ** int(monomial[0])
+        return [Fraction(total.get(k, 0)) for k in range(ff.p + 1)]
+
+    den, K = _scalar_at(ff.Den, d), _scalar_at(ff.K, d)
+    return {"P1": [v / den for v in value(ff.P1t)], "P2": [v / (K * K * den) for v in value(ff.M2)],
+            "P3": [v / (K * den) for v in value(ff.M3)]}
+
+
+def _scalar_at(poly, d: Fraction) -> Fraction:
+    if isinstance(poly, int):
+        return Fraction(poly)
+    return sum((int(c) * d ** int(m[0]) for m, c in zip(poly.monoms(), poly.coeffs())), Fraction(0))
+
+
+def certify_integral_core(log: CertificateLog, module, objects: dict) -> list:
+    out = []
+    d_point = Fraction(3, 7)
+    for p, ff in sorted(objects.items()):
+        with stopwatch() as elapsed:
+            core = module._integral_core(p, INTEGRAL_RING)
+            differing = [name for name in ("P1t", "M2", "M3", "K", "Den") if getattr(core, name) != getattr(ff, name)]
+            public = module.first_integral_coefficients(p, d_point)
+            expected = _integral_at(ff, d_point)
+            differing += [f"first_integral_coefficients(p, 3/7)[{name!r}]" for name in ("P1", "P2", "P3")
+                          if public[name] != expected[name]]
+        out.append(_record(log, f"p = {p}: first_integral's exact core reproduces the certified P1~, M2, M3, K, Den, "
+                           "and first_integral_coefficients(p, 3/7) the certified P1, P2, P3", "round trip",
+                           "exact equality in Z[d,w1,w2] (python-flint) and in Q", not differing, elapsed[0],
+                           ff.terms(), "differs: " + ", ".join(differing) if differing else "identical"))
+    return out
+
+
+def _core_claim(p: int) -> str:
+    return f"p = {p}: gamma_basis's exact core reproduces the certified numerators of gamma^(1) and V"
+
+
+def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
+    """The emitted ``_basis_core`` against the certified numerators kept in this process: exact equality."""
+    out = []
+    for p, (real, cplx) in sorted(objects.items()):
+        with stopwatch() as elapsed:
+            mine = module._basis_core(p, BASIS_RING)
+            differing = [f"{kind} component {j + 1}" for kind, got, want in (("gamma^(1)", mine[0], real),
+                                                                           ("V", mine[1], cplx))
+                         for j in range(3) if got.M[j] != want[j]]
+        out.append(_record(log, _core_claim(p), "round trip", "exact equality in Q[x,d,i]/(i^2+1) (python-flint)",
+                           not differing, elapsed[0], sum(len(m) for m in real + cplx),
+                           "differs: " + ", ".join(differing) if differing else "identical"))
+    return out
+
+
+def basis_core_by_digest(module, p: int, digest: str) -> tuple:
+    """The emitted core's numerators for p against :func:`derivations.sections.meromorphic.numerators_digest` of
+    the basis certified in another process: (certificate, numerators), the certificate returned, not
+    recorded (the caller records it in p order), the numerators as (real, complex) lists."""
+    from derivations.sections.meromorphic import numerators_digest
+
+    with stopwatch() as elapsed:
+        real, cplx = module._basis_core(p, BASIS_RING)
+        same = numerators_digest(real.M, cplx.M) == digest
+    method = "equal SHA-256 of python-flint's printed numerators (the certifying worker's and the emitted core's)"
+    certificate = Certificate(_core_claim(p), "round trip", method, Outcome.PASS if same else Outcome.FAIL, elapsed[0],
+                              sum(len(m) for m in real.M + cplx.M), "identical" if same else "differs")
+    return certificate, (real.M, cplx.M)
+
+
+def per_p_checks(task) -> list:
+    """Per-p work (run in a worker) for a p whose basis was certified in a worker: ``task = (directory,
+    p, digest)``.  The core by fingerprint (:func:`basis_core_by_digest`), then the float-path checks
+    of ``first_integral`` and ``gamma_basis`` (:mod:`derivations.output.float_paths`).  The module is
+    imported from the directory once per process, so the emitted code is what is checked, and the
+    directory must be visible to the worker (local processes; a Dask cluster on the same file
+    system).  Returns the certificates, keys left to the main log."""
+    from derivations.output import float_paths
+
+    directory, p, digest = task
+    module = load_module_once(directory)
+    private = CertificateLog(derivation=SECTION)
+    core, numerators = basis_core_by_digest(module, p, digest)   # not recorded: no key, no derivation yet
+    try:
+        with mpmath.workdps(15):
+            if p in module.INTEGRAL_PS:
+                float_paths.check_first_integral(private, module, p)
+            # the exact evaluation only from numerators proved equal to the certified ones
+            float_paths.check_gamma_basis(private, module, p, numerators if core.outcome is Outcome.PASS else None)
+    except CertificationFailure:
+        pass   # returned with the others: the main log raises when it records it, as in one process
+    return [core] + private.handed_over()
+
+
+_modules: dict = {}
+
+
+def load_module_once(directory) -> object:
+    """:func:`load_module`, once per process and module content (per-p workers check one emitted module).
+
+    Keyed by the file's SHA-256, not only its directory: workers outlive a build (the executor keeps
+    its pool), and the next build may stage a different module in the same place.
+    """
+    path = Path(directory) / "suslov_formulas.py"
+    key = (str(directory), hashlib.sha256(path.read_bytes()).hexdigest())
+    if key not in _modules:
+        _modules.clear()   # one emitted module at a time is all a worker needs
+        _modules[key] = load_module(Path(directory))
+    return _modules[key]
+
+
+# ------------------------------------------------------------------ orchestration
+
+
+def certify_module(log: CertificateLog, build, directory: Path) -> list:
+    """All round-trip certificates for the module in ``directory`` (raises CertificationFailure).
+
+    In this process: the emitted formulas, the exact cores against the objects kept here, and the
+    float paths of those p; the p whose bases were certified in workers get :func:`per_p_checks`
+    through ``CertificateLog.map_per_p`` (all cores, largest p first, recorded in p order), which
+    runs while this process does its own part.
+    """
+    from derivations.core.emit import emitted_formulas
+    from derivations.output import float_paths
+
+    module = load_module(directory)
+    exports = build.results["meromorphic"].exports
+    digests = exports.get("digests", {})
+    # the same working precision whatever the caller set: the evidence details are part of the byte-identical outputs
+    certs = []
+
+    def in_this_process():
+        # while the workers check the later p; recorded first, as when it ran before them
+        certs.extend(certify_emitted(log, module, emitted_formulas(build)))
+        certs.extend(certify_integral_core(log, module, build.results["first_integrals"].exports["objects"]))
+        certs.extend(certify_basis_core(log, module, exports["objects"]))
+        certs.extend(float_paths.certify(log, module, build, skip=set(digests)))
+
+    with log.section(SECTION), mpmath.workdps(15):
+        tasks = [(str(directory), p, digest) for p, digest in sorted(digests.items())]
+        for batch in log.map_per_p("round trip: bases beyond the kept ones", tasks, per_p_checks, cacheable=False,
+                                   meanwhile=in_this_process):
+            certs += [log.record(c) for c in batch]
+    return certs
+
+
+def verify(build, directory: Path) -> str | None:
+    """None when the module in ``directory`` passes every round-trip check, else the first discrepancy."""
+    log = CertificateLog()
+    try:
+        certify_module(log, build, directory)
+    except CertificationFailure as failure:
+        c = failure.certificate
+        return f"{c.claim}: {c.detail}"
+    except (ImportError, SyntaxError, AttributeError, FileNotFoundError, TypeError, ValueError) as error:
+        return f"the module in {directory} cannot be checked: {type(error).__name__}: {error}"
+    return None

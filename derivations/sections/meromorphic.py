@@ -1,0 +1,318 @@
+"""Meromorphic solutions for odd p: F1, F2, F3 and the orthonormal basis (sections 5.1, 6.1).
+
+Labels: ``pol_sol``, ``F_23_splitted``, ``abc``, ``poly_F``, ``poly_F2``,
+``F_23_pol``, ``gam1``, ``gam2``, ``gam3`` (Theorem 6.1), ``eq:gam3``,
+``asymp``, and the printed examples for p = 1 and p = 3 (section 6.2).
+
+Representation
+--------------
+With ``x = e^t`` every solution is ``e^{i r t} N(x) / (1 + x^2)^p`` with a
+polynomial numerator ``N`` of degree <= 2p (r = 0 or r = p/d).  Components are
+kept in the *c-free* scaling ``(g1, c g2, c g3)``, ``c = sqrt(d^2+1)``, in which
+the Poisson equations with ``omega = ((p/d) tanh t, -(p/d) c sech t)`` have
+rational coefficients:
+
+    g1' = a S g3~,  g2~' = w1 g3~,  g3~' = -a (d^2+1) S g1 - w1 g2~,   a = p/d.
+
+Construction (per odd p, exact in ``Q[x, d, i]/(i^2+1)`` with python-flint):
+
+* gamma^(1): ``g1 = tanh t F1(sech^2 t)``, i.e. numerator
+  ``N1 = (x^2 - 1) sum_j c_j 4^j x^{2j} (1+x^2)^{p-1-2j}`` with the derived
+  coefficients of ``derivations.sections.first_integrals`` (denominators cleared).
+* the complex solution: ``g1 = e^{+i (p/d) t} x P(x^2)/(1+x^2)^p``, ``P = F Fhat``
+  with ``F = 2F1(a+, b; c+; -y)``, ``a+ = (2-p)/2 + ip/(2d)``, ``b = (1-p)/2``,
+  ``c+ = 3/2 + ip/(2d)`` and ``Fhat = [d(p-1)y - d - ip] F - 2d y(y+1) F'``
+  (``abc``, ``poly_F``, ``F_23_splitted``).  The parameters with ``+ip`` go with
+  ``e^{+i(p/d)t}``: the printed ``gam2`` pairs them with ``e^{-i(p/d)t}``, which
+  is not a solution (certified below).
+* the other components from ``eq:gam3`` in exact form: ``g3~ = D g1 (1+x^2)/(2 a x)``
+  and ``g2~ = (c w2 g1 - D g3~)/w1`` (``D = d/dt = x d/dx``); the divisions by
+  ``x`` and by ``x^2 - 1`` (which vanishes at t = 0, the removable singularity of
+  the printed ``eq:gam3``) are exact polynomial divisions, certified.
+
+Certificates per odd p: Poisson equations (exact numerator identities), unit
+norm of gamma^(1), ``V.V = 0`` and ``V.conj(V) = 2|k|^2`` for the complex
+solution normalised by ``k = lim_{t->-oo} V2``, orthogonality, the limits
+(``asymp``), the orientation, and F1 solving ``eq:genhip``.  Orthonormality is certified for
+p <= KEEP_BASES by expanding the four products (exact zero tests) and beyond by conservation: the
+c-free Poisson matrix is real and skew for ``M = diag(d^2+1, 1, 1)`` (certified once), so the
+M-product of two certified solutions is constant in t; for ``|gamma^(1)|^2`` and ``V.conj(V)`` the
+constant is the exact value at x = 0, and ``V.V``, ``gamma^(1).V`` carry ``e^(2iat)``, ``e^(iat)``
+(a = p/d != 0), which has no limit as t -> -oo, so their constants are 0.  Measured: 7.4 s -> 0.03 s
+for this certificate at p = 51, where the expanded products were 95% of the per-p cost.  The real basis is
+``gamma^(2) + i sigma gamma^(3) = Gamma`` with ``sigma`` chosen so that the matrix
+of rows gamma^(1), gamma^(2), gamma^(3) has determinant +1.
+"""
+from __future__ import annotations
+
+import hashlib
+
+import sympy as sp
+
+from derivations.core.certificates import (
+    Certificate,
+    CertificateLog,
+    CertificationFailure,
+    Outcome,
+    stopwatch,
+)
+from derivations.core.exact import Domain, certify_zero
+from derivations.core.result import DerivationResult
+from derivations.sections.meromorphic_printed import (
+    coefficient_tables,
+    compare_poly_f2,
+    compare_printed_examples,
+    printed_comparisons,
+    written_out,
+)
+from derivations.sections.meromorphic_ring import (  # noqa: F401  (re-exported: the ring helpers the tests and roundtrip use)
+    CTX,
+    DD,
+    DOMAIN,
+    I2,
+    ONE,
+    RING,
+    ZCTX,
+    ZD,
+    ZV,
+    Basis,
+    D,
+    I,
+    X,
+    at_x,
+    conj,
+    gamma1_numerator,
+    hypergeometric_polynomials,
+    in_y_squared,
+    red,
+    third_order_residual,
+)
+from suslov.recipes import basis as recipe
+from suslov.recipes.basis import Solution
+from suslov.recipes.integrals import e_coefficient
+
+NAME = "meromorphic"
+TITLE = "Meromorphic solutions for odd $p$ and the orthonormal basis (sections 5.1, 6.1)"
+REQUIRES = ("hypergeometric",)
+
+def poisson_residuals(sol: Solution) -> list:
+    """The c-free Poisson equations, numerators times d (zero iff solved)."""
+    M1, M2, M3 = sol.M
+    p, r = sol.p, sol.rate
+    return [red(DD(M1, p, r) - 2 * p * X * M3),
+            red(DD(M2, p, r) - p * (X**2 - 1) * M3),
+            red(DD(M3, p, r) + 2 * p * (D**2 + 1) * X * M1 + p * (X**2 - 1) * M2)]
+
+
+def metric_dot(A: list, B: list):
+    """(d^2+1) A1 B1 + A2 B2 + A3 B3 (the Euclidean product of (A1, A2/c, A3/c) times c^2)."""
+    return red((D**2 + 1) * A[0] * B[0] + A[1] * B[1] + A[2] * B[2])
+
+
+def conservation_certificate(log: CertificateLog) -> Certificate:
+    """The c-free Poisson system ``G' = A(t) G`` of :func:`poisson_residuals` is skew for the metric of
+    :func:`metric_dot`: ``A^T M + M A = 0`` with ``M = diag(d^2+1, 1, 1)``, and A is real.
+
+    So for two solutions ``d/dt (G_a^T M G_b) = G_a^T (A^T M + M A) G_b = 0``: every metric product
+    of two solutions is constant in t, and the complex conjugate of a solution is a solution.
+    """
+    a, S, w1 = sp.symbols("a S w1", real=True)
+    dd = sp.Symbol("d", positive=True)
+    A = sp.Matrix([[0, 0, a * S], [0, 0, w1], [-a * (dd**2 + 1) * S, -w1, 0]])
+    G = sp.diag(dd**2 + 1, 1, 1)
+    return certify_zero(log, "the c-free Poisson matrix A(t) (g1' = a S g3, g2' = w1 g3, g3' = -a(d^2+1) S g1 - w1 g2) "
+                        "is real and skew for M = diag(d^2+1, 1, 1): A^T M + M A = 0, so M-products of two "
+                        "solutions are constant in t", "eq:ps", list(A.T * G + G * A), Domain("Q(a,d,S,w1)"))
+
+
+def construct(p: int) -> tuple[Solution, Solution]:
+    """The shared recipe ``suslov.recipes.basis.construct`` in Q[x, d, i]/(i^2+1)."""
+    return recipe.construct(p, RING)
+
+
+def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
+    """The certificates of one odd p's basis (see the module docstring).
+
+    Orthonormality is certified ``direct``-ly (the four product identities expanded, exact zero
+    tests; the default for p <= KEEP_BASES) or by conservation (the default beyond: the products
+    of two solutions of a G-skew linear system are constant in t, see
+    :func:`conservation_certificate`; 50 times cheaper at p = 51, where the expanded products
+    dominate the whole per-p cost).
+    """
+    direct = p <= KEEP_BASES if direct is None else direct
+    certs = []
+    with stopwatch() as elapsed:
+        real, cplx = construct(p)
+        ok_div = real.divisions_exact and cplx.divisions_exact
+    certs.append(log.record(Certificate(
+        f"p = {p}: the components from eq:gam3 are polynomials over (1+x^2)^p: exact division by x and x^2-1 "
+        "(no removable singularity at t = 0)", "eq:gam3", f"exact division in {DOMAIN}",
+        Outcome.PASS if ok_div else Outcome.FAIL, elapsed[0], sum(len(m) for m in real.M + cplx.M))))
+    with stopwatch() as elapsed:
+        third = third_order_residual(cplx.M[0], p, 1)
+    certs.append(log.record(Certificate(
+        f"p = {p}: g1 = e^(i(p/d)t) x P+(x^2)/(1+x^2)^p = sqrt(z-1) F2(z) (F_23_pol) solves eq:genhipprep; with the "
+        "certified reduction to eq:genhip, F2 and its conjugate F3 solve eq:genhip", "F_23_pol",
+        f"exact zero test in {DOMAIN}", Outcome.PASS if third.is_zero() else Outcome.FAIL, elapsed[0], len(third))))
+    with stopwatch() as elapsed:
+        residuals = poisson_residuals(real) + poisson_residuals(cplx)
+        ok = all(r.is_zero() for r in residuals)
+    certs.append(c_poisson := log.record(Certificate(
+        f"p = {p}: gamma^(1) and the complex solution e^(i(p/d)t) V solve the Poisson equations eq:ps with omega "
+        "from omegas", "eq:ps", f"exact zero test in {DOMAIN}", Outcome.PASS if ok else Outcome.FAIL, elapsed[0],
+        sum(len(r) for r in residuals), "6 numerator identities")))
+
+    with stopwatch() as elapsed:
+        K = 2 * p * p  # M = (2p^2 N1, M2, p M3), N1 over Den1
+        Den1 = ONE
+        for m in range((p - 1) // 2):
+            Den1 *= (2 * m + 1) ** 2 * D**2 + p * p
+        scale_real = K * Den1
+        k = at_x(cplx.M[1], 0)
+        V = cplx.M
+        unit_target = 2 * red(k * conj(k))
+        if direct:
+            Vbar = [conj(v) for v in V]
+            norm = metric_dot(real.M, real.M) - (D**2 + 1) * (scale_real * (1 + X**2) ** p) ** 2
+            isotropic = metric_dot(V, V)
+            unit = metric_dot(V, Vbar) - unit_target * (1 + X**2) ** (2 * p)
+            orthogonal = metric_dot(real.M, V)
+            ok = norm.is_zero() and isotropic.is_zero() and unit.is_zero() and orthogonal.is_zero()
+            size = len(norm) + len(isotropic) + len(unit) + len(orthogonal)
+        else:
+            # conserved products (see conservation_certificate): the rate-0 constants are the values at
+            # x = 0; V.V and gamma^(1).V carry e^(2iat), e^(iat) and vanish without any evaluation
+            real0, V0 = ([at_x(c, 0) for c in vector] for vector in (real.M, V))
+            Vbar0 = [conj(v) for v in V0]
+            ok = (c_poisson.outcome is Outcome.PASS
+                  and (metric_dot(real0, real0) - (D**2 + 1) * scale_real**2).is_zero()
+                  and (metric_dot(V0, Vbar0) - unit_target).is_zero())
+            size = 2
+    method = (f"exact zero test in {DOMAIN}" if direct else
+              "conservation: the certified Poisson solutions (this p) have constant G-products (G-skew system, "
+              "certified once); rate-0 constants from exact values at x = 0, products carrying e^(ikat), k != 0, "
+              "are zero (a non-zero constant would make e^(ikat) converge as t -> -oo)")
+    certs.append(log.record(Certificate(
+        f"p = {p}: |gamma^(1)| = 1, V.V = 0, |V|^2 = 2|k|^2, gamma^(1).V = 0: gamma^(1), Re, Im of V/k orthonormal",
+        "gam1, gam2, gam3", method, Outcome.PASS if ok else Outcome.FAIL, elapsed[0], size, "4 identities")))
+
+    with stopwatch() as elapsed:
+        v3 = at_x(cplx.M[2], 0)
+        sigma = 1 if red(v3 - I * k).is_zero() else (-1 if red(v3 + I * k).is_zero() else 0)
+        lim_minus = [at_x(m, 0) for m in real.M]
+        top = 2 * p
+        lim_plus = [_coefficient_x(m, top) for m in real.M]
+        ok = (sigma != 0 and (lim_minus[0] + scale_real).is_zero() and lim_minus[1].is_zero()
+              and lim_minus[2].is_zero() and (lim_plus[0] - scale_real).is_zero() and lim_plus[1].is_zero()
+              and lim_plus[2].is_zero() and at_x(cplx.M[0], 0).is_zero())
+    certs.append(log.record(Certificate(
+        f"p = {p}: gamma^(1) -> (-1,0,0) as t -> -oo and (+1,0,0) as t -> +oo; V/k -> (0, 1, {'+' if sigma > 0 else '-'}i) "
+        "as t -> -oo (asymp)", "asymp", f"exact evaluation in {DOMAIN}", Outcome.PASS if ok else Outcome.FAIL,
+        elapsed[0], 0)))
+    return Basis(p, real, cplx, k, scale_real, sigma, certs)
+
+
+def _coefficient_x(poly, degree: int):
+    """Coefficient of x^degree as a polynomial in (d, i)."""
+    total = CTX.constant(0)
+    for monomial, coefficient in zip(poly.monoms(), poly.coeffs()):
+        if monomial[0] == degree:
+            total += coefficient * D ** monomial[1] * I ** monomial[2]
+    return total
+
+
+def genhip_check(log: CertificateLog, p: int) -> Certificate:
+    """F1(z) = sum c_j z^j solves eq:genhip (fraction-free, times 8 d^2)."""
+    with stopwatch() as elapsed:
+        J = (p - 1) // 2
+        u = ZCTX.constant(0)
+        for j in range(J + 1):
+            tail = ZCTX.constant(1)
+            for m in range(j, J):
+                tail *= (2 * m + 1) ** 2 * ZD**2 + p * p
+            u += e_coefficient(j, p) * ZD ** (2 * j) * tail * ZV**j
+        d1 = u.derivative("z")
+        d2 = d1.derivative("z")
+        d3 = d2.derivative("z")
+        lhs = (8 * ZD**2 * ZV**2 * (1 - ZV) * d3 + 4 * ZD**2 * (4 - 9 * ZV) * ZV * d2
+               + (2 * (ZD**2 + p * p) + 2 * ZD**2 * (p * p - 13) * ZV) * d1 + ZD**2 * (p * p - 1) * u)
+    return log.record(Certificate(
+        f"p = {p}: the terminating series F1(z) (pol_sol, derived coefficients) solves eq:genhip",
+        "pol_sol", "exact zero test in Z[z,d] (python-flint, times 8 d^2 Den)",
+        Outcome.PASS if lhs.is_zero() else Outcome.FAIL, elapsed[0], len(u)))
+
+
+KEEP_BASES = 15   # bases up to this p are built in the main process and kept (printed examples, tables)
+
+
+def numerators_digest(real_M: list, complex_M: list) -> str:
+    """SHA-256 of the six numerators' terms (exponents, then coefficients as printed by python-flint): the
+    fingerprint by which the round trip compares the emitted module's core with bases certified in another
+    process (at p = 101 the numerators print as 31 MB; shipping them between processes cost more than
+    certifying them).  Term by term, not ``str(poly)``: python-flint 0.9's printing of a whole mpoly does
+    not free its buffer (measured: 32 MB kept per call at p = 101, 250 MB per p near 200 in a worker)."""
+    digest = hashlib.sha256()
+    for poly in list(real_M) + list(complex_M):
+        digest.update(repr(poly.monoms()).encode())
+        digest.update(",".join(map(str, poly.coeffs())).encode())
+        digest.update(b";")
+    return digest.hexdigest()
+
+
+def basis_for_p(p: int) -> dict:
+    """Per-p work (run in a worker): the certificates of :func:`genhip_check` and :func:`certify_p`.
+
+    Returns plain data (python-flint objects do not pickle): the certificates (keys left to the
+    main log, which records them in p order), sigma, the numerators' term counts and their
+    :func:`numerators_digest`.  A certificate with an unexpected outcome is returned too, not raised:
+    the main log raises when it records it, exactly as a serial build would.
+    """
+    private = CertificateLog(derivation=NAME)
+    sigma, terms, digest = 0, [], ""
+    try:
+        genhip_check(private, p)
+        basis = certify_p(private, p)
+        sigma = basis.sigma
+        terms = [len(m) for m in basis.real.M + basis.complex_.M]
+        digest = numerators_digest(basis.real.M, basis.complex_.M)
+    except CertificationFailure:
+        pass
+    return {"certificates": private.handed_over(), "sigma": sigma, "terms": terms, "digest": digest}
+
+
+def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
+    result = DerivationResult(NAME)
+    rows = []
+    bases, objects = {}, {}
+    odd = options.odd_p_values()
+
+    def kept_bases():
+        # p <= KEEP_BASES in this process (their Basis objects feed the printed comparisons), while the
+        # workers certify the rest; recorded before them, in p order, so the log is the same either way
+        compare_poly_f2(log, result, options)
+        conservation_certificate(log)
+        for p in log.per_p("bases", [q for q in odd if q <= KEEP_BASES]):
+            c_f1 = genhip_check(log, p)
+            basis = bases[p] = certify_p(log, p)
+            objects[p] = (basis.real.M, basis.complex_.M)
+            rows.append({"p": p, "sigma": basis.sigma,
+                         "certificates": [c_f1.key] + [c.key for c in basis.certificates],
+                         "terms": [len(m) for m in basis.real.M + basis.complex_.M]})
+
+    later = [q for q in odd if q > KEEP_BASES]
+    digests = {}
+    for p, outcome in zip(later, log.map_per_p("bases", later, basis_for_p, meanwhile=kept_bases)):
+        keys = [log.record(c).key for c in outcome["certificates"]]   # raises at a failed one, as in serial
+        digests[p] = outcome["digest"]
+        rows.append({"p": p, "sigma": outcome["sigma"], "certificates": keys, "terms": outcome["terms"]})
+    if 3 in bases:
+        printed_comparisons(log, result, bases[3].certificates[2])
+    compare_printed_examples(log, result, bases)
+    for p, basis in sorted(bases.items()):
+        if p > 3:
+            continue
+        result.formula(f"basis{p}", "gam1, gam2, gam3, eq:gam3", f"Orthonormal basis for $p={p}$ ($c=\\sqrt{{d^2+1}}$)",
+                       written_out(basis),
+                       *[c for c in log.certificates if c.key in rows[(p - 1) // 2]["certificates"]])
+    result.exports.update(objects=objects, digests=digests, bases=bases, rows=rows, sigma={r["p"]: r["sigma"] for r in rows}, tables=coefficient_tables(options))
+    return result

@@ -1,0 +1,132 @@
+"""A Suslov body and its angular velocity, from the certified closed forms (paper sections 2 and 4).
+
+A body is an inertia tensor with the constraint axis ``a = e3`` (``omega3 = 0``),
+or the parameters ``p, d`` of the case ``I13 = 0`` (``eq:necc1`` corrected,
+``eq:cpr``).  Everything is computed in the *paper's frame* (rotation about e3
+with ``I12 = 0``, ``I11 >= I22``; in the case ``I13 = 0`` also ``I23 < 0``, so that
+``p > 0``) and reported in the scene's frame.
+
+The angular velocity is always a closed form (``eq:o12`` / ``omegas``, derived
+and certified by the build): in the paper's frame
+``omega(t) = lam (u tanh(lam t) + v sech(lam t))`` with the rate ``lam`` fixed by
+the energy; ``t = 0`` is the instant at which omega crosses the line through the
+two equilibria's midpoint (``tanh = 0``).  Every other motion on the same energy
+level is a time shift of this one (or its mirror, ``branch = -1`` of
+``omega_general``).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from suslov.loader import gf
+
+
+@dataclass(frozen=True)
+class Body:
+    """A body in the paper's frame; ``frame`` maps paper coordinates to scene coordinates."""
+
+    frame: np.ndarray            # columns: the paper's axes in the scene frame
+    tensor: np.ndarray           # the inertia tensor in the scene frame (as given, physical units)
+    entries: tuple               # (I11, I22, I13, I23) in the paper's frame, det I = 1
+    special: bool                # I13 = 0: closed-form angle, p and d defined
+    p: float | None
+    d: float | None
+    u: np.ndarray                # omega = lam (u tanh(lam t) + v sech(lam t)) in the paper's frame
+    v: np.ndarray
+    rate: float                  # lam
+
+    @property
+    def odd_integer_p(self) -> int | None:
+        """p when it is (within 1e-9) an odd integer with a certified basis, else None."""
+        if not self.special:
+            return None
+        k = round(self.p)
+        if abs(self.p - k) <= 1e-9 * max(1.0, self.p) and k % 2 == 1 and k in gf.BASIS_PS:
+            return int(k)
+        return None
+
+    def omega(self, t) -> np.ndarray:
+        """omega(t) in the paper's frame, shape t.shape + (2,)."""
+        s = self.rate * np.asarray(t, dtype=float)
+        if self.special:
+            w1, w2 = gf.omega(s, self.p, self.d)
+        else:
+            w1, w2 = gf.omega_general(s, *self.entries)
+        return self.rate * np.stack([w1, w2], axis=-1)
+
+    def omega_scene(self, t) -> np.ndarray:
+        """omega(t) in the scene frame, shape t.shape + (3,)."""
+        w = self.omega(t)
+        full = np.concatenate([w, np.zeros(w.shape[:-1] + (1,))], axis=-1)
+        return full @ self.frame.T
+
+    def to_paper(self, vectors) -> np.ndarray:
+        return np.asarray(vectors, dtype=float) @ self.frame
+
+    def to_scene(self, vectors) -> np.ndarray:
+        return np.asarray(vectors, dtype=float) @ self.frame.T
+
+    def energy(self, t=0.0) -> float:
+        """Kinetic energy (1/2) <I omega, omega> with the tensor as given."""
+        w = self.omega_scene(np.asarray(t, dtype=float))
+        return float(0.5 * w @ self.tensor @ w)
+
+    def limit_axis(self) -> np.ndarray:
+        """Unit vector ``u/|u|`` (paper frame): omega -> -lam u at t -> -oo and +lam u at +oo."""
+        return np.array([*self.u / np.linalg.norm(self.u), 0.0])
+
+    def describe(self) -> str:
+        if self.special:
+            return (f"case I13 = 0: p = {self.p:.12g}, d = {self.d:.12g}"
+                    + (" (odd integer p: closed-form Poisson basis)" if self.odd_integer_p else ""))
+        I11, I22, I13, I23 = self.entries
+        return f"general body: I11 = {I11:.6g}, I22 = {I22:.6g}, I13 = {I13:.6g}, I23 = {I23:.6g} (det I = 1)"
+
+
+def tensor_from_pd(p: float, d: float) -> np.ndarray:
+    """A representative tensor of the case I13 = 0 with I22 = 1 (I33 does not enter the motion)."""
+    i23 = -d / p
+    return np.array([[d * d + 1.0, 0.0, 0.0], [0.0, 1.0, i23], [0.0, i23, i23 * i23 + 1.0]])
+
+
+def make_body(tensor=None, p=None, d=None, energy=None, tol=1e-9) -> Body:
+    """Build a :class:`Body` from a tensor or from (p, d); ``energy`` fixes the rate (default rate 1).
+
+    Raises ValueError naming the offending quantity.
+    """
+    if tensor is None:
+        if p is None or d is None:
+            raise ValueError("a body needs either 'inertia' or both 'p' and 'd'")
+        if not (math.isfinite(p) and p > 0):
+            raise ValueError(f"p={p!r}: must be finite and > 0")
+        if not (math.isfinite(d) and d > 0):
+            raise ValueError(f"d={d!r}: must be finite and > 0")
+        tensor = tensor_from_pd(p, d)
+    tensor = np.asarray(tensor, dtype=float)
+    R, (I11, I22, I13, I23) = gf.canonical_frame(tensor)
+    size = max(abs(I11), abs(I22), abs(I13), abs(I23))
+    special = abs(I13) <= tol * size and I11 - I22 > tol * size
+    if special:
+        if I23 > 0:  # rotate the frame by pi about e3 so that p > 0
+            R = R @ np.diag([-1.0, -1.0, 1.0])
+            I13, I23 = -I13, -I23
+        I13 = 0.0
+        d_val = math.sqrt(I11 / I22 - 1.0)
+        p_val = -I22 * d_val / I23
+        a = p_val / d_val
+        u, v = np.array([a, 0.0]), np.array([0.0, -a * math.sqrt(d_val * d_val + 1.0)])
+    else:
+        p_val = d_val = None
+        D = I13 * I13 * I22 + I23 * I23 * I11
+        r = math.sqrt(I11 * I22)
+        u = np.array([-I11 * I22 * I23 / D, I11 * I22 * I13 / D])
+        v = np.array([I22 * I13 * r / D, I11 * I23 * r / D])
+    body = Body(R, tensor, (I11, I22, I13, I23), special, p_val, d_val, u, v, 1.0)
+    if energy is not None:
+        if not (math.isfinite(energy) and energy > 0):
+            raise ValueError(f"energy={energy!r}: must be finite and > 0")
+        body = Body(R, tensor, body.entries, special, p_val, d_val, u, v, math.sqrt(energy / body.energy()))
+    return body

@@ -1,0 +1,258 @@
+"""Run a plan: compute exactly the planned steps, then write the results atomically.
+
+Each step is a function of the plan and the data computed so far; the engine
+records what ran (name, method, seconds) in ``Run.executed``, which the report
+and the tests read.  Outputs (CSV, JSON, PNG, ``report.md``) are written atomically
+(:func:`suslov.simulator.outputs.staged`), so a failed run leaves the output directory as it was.
+"""
+from __future__ import annotations
+
+import json
+import logging
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from suslov.loader import gf
+from suslov.simulator import integrate
+from suslov.simulator.outputs import REPORT, staged
+from suslov.simulator.planner import Plan
+
+log = logging.getLogger(__name__)
+
+
+@dataclass
+class Run:
+    plan: Plan
+    data: dict = field(default_factory=dict)
+    results: dict = field(default_factory=dict)
+    executed: list = field(default_factory=list)
+
+
+def _basis_paper(body, t):
+    """Rows gamma^(1..3) of the certified basis at times t (paper frame), shape (n, 3, 3)."""
+    return gf.gamma_basis(body.rate * np.asarray(t, dtype=float), body.odd_integer_p, body.d)
+
+
+def _initial_paper(run: Run):
+    scene, body = run.plan.scene, run.plan.body
+    return None if isinstance(scene.initial, str) else body.to_paper(scene.initial)
+
+
+def step_omega(run: Run):
+    t = run.plan.scene.times()
+    run.data["t"] = t
+    run.data["omega"] = run.plan.body.omega_scene(t)
+    run.data["omega_paper"] = run.plan.body.omega(t)
+
+
+def step_gamma_closed_form(run: Run):
+    body, t = run.plan.body, run.plan.scene.times()
+    B = _basis_paper(body, t)
+    g0 = _initial_paper(run)
+    if g0 is None:
+        coeff = np.array([1.0, 0.0, 0.0])  # gamma^(1): the ss solution
+    else:
+        coeff = _basis_paper(body, t[:1])[0] @ g0
+    run.data["t"] = t
+    run.data["gamma"] = body.to_scene(np.einsum("i,nij->nj", coeff, B))
+    run.results["gamma"] = {"method": "closed form gamma_basis", "p": body.odd_integer_p,
+                            "norm_drift": float(np.max(np.abs(np.linalg.norm(run.data["gamma"], axis=-1) - 1)))}
+
+
+def step_gamma_integrate(run: Run):
+    scene, body = run.plan.scene, run.plan.body
+    t = scene.times()
+    g0 = _initial_paper(run)
+    t_start = None
+    if g0 is None:
+        t_start, g0 = integrate.ss_initial(body, t[0])
+    sol = solve(scene, body, t, g0, t_start)
+    run.data["t"] = t
+    run.data["gamma"] = body.to_scene(sol.values[:, 0, :])
+    run.results["gamma"] = sol.summary() | {"start": "ss series" if t_start is not None else "gamma0"}
+
+
+def step_orientation_closed_form(run: Run):
+    body, t = run.plan.body, run.plan.scene.times()
+    run.data["orientation"] = body.to_scene(_basis_paper(body, t))
+    run.results["orientation"] = {"method": "closed form gamma_basis rows (gamma^(1) is the ss solution)"}
+
+
+def step_orientation_integrate(run: Run):
+    scene, body = run.plan.scene, run.plan.body
+    t = scene.times()
+    sol = solve(scene, body, t, body.to_paper(np.eye(3)))
+    run.data["orientation"] = body.to_scene(sol.values)
+    run.results["orientation"] = sol.summary() | {"start": "identity at t0"}
+
+
+def step_integrals(run: Run):
+    body = run.plan.body
+    t, w = run.data["t"], run.data["omega"]
+    energy = 0.5 * np.einsum("ni,ij,nj->n", w, body.tensor, w)
+    g = run.data["gamma"]
+    columns = {"F1": energy, "F2": np.einsum("ni,ni->n", g, g)}
+    p = body.odd_integer_p
+    if p is not None and p in gf.INTEGRAL_PS:
+        wp, gp = run.data["omega_paper"], body.to_paper(g)
+        columns["F3"] = gf.first_integral(p, body.d, wp[:, 0], wp[:, 1], gp[:, 0], gp[:, 1], gp[:, 2])
+    run.data["integrals"] = (t, columns)
+    run.results["integral_drift"] = {name: {"initial": float(v[0]), "max_abs_drift": float(np.max(np.abs(v - v[0])))}
+                                     for name, v in columns.items()}
+
+
+def step_angle_closed_form(run: Run):
+    body = run.plan.body
+    run.results["scattering_angle"] = {"radians": float(gf.scattering_angle(body.p, body.d)),
+                                       "method": "closed form (Theorem 5.2, corrected: q = d)",
+                                       "p": body.p, "d": body.d}
+
+
+def step_angle_enclosure(run: Run):
+    from suslov.validated import (
+        scattering_angle_enclosure,  # python-flint balls only when asked for
+    )
+
+    enclosure = scattering_angle_enclosure(*run.plan.body.entries, digits=20)
+    run.results["scattering_angle_enclosure"] = {
+        "ball": enclosure.angle.str(25), "midpoint": float(enclosure.angle.mid()),
+        "radius": float(enclosure.angle.rad()),
+        "method": "validated integration (limit series + Taylor steps, ball arithmetic), rigorous",
+        "entries_paper_frame": [float(x) for x in run.plan.body.entries]}
+
+
+def step_angle_integrate(run: Run):
+    angle, error, sol = numeric_angle(run.plan.scene, run.plan.body)
+    run.results["scattering_angle"] = {"radians": angle, "error_estimate": error,
+                                       "method": "numerical: ss integrated to lam t = 40"} | sol.summary()
+
+
+def solve(scene, body, t, initial, t_start=None):
+    """The scene's integrator: heyoka's Taylor method (``taylor``) or SciPy (``scipy:NAME``)."""
+    if scene.method == "taylor":
+        from suslov.simulator import taylor  # LLVM compilation only when a Taylor integration is planned
+        return taylor.solve_poisson_taylor(body, t, initial, tol=scene.rtol, t_start=t_start)
+    return integrate.solve_poisson(body, t, initial, scene.rtol, scene.atol, scene.method.split(":", 1)[1],
+                                   t_start=t_start)
+
+
+def numeric_angle(scene, body):
+    """(angle, error estimate, Integration) of a general body with the scene's integrator family."""
+    if scene.method == "taylor":
+        from suslov.simulator import taylor
+        return taylor.taylor_angle(body, tol=1e-12)
+    return integrate.numeric_angle(body)
+
+
+def step_sleigh_velocities(run: Run):
+    t = run.plan.scene.times()
+    v, w, theta = run.plan.body.velocities(t)
+    run.data["t"] = t
+    run.data["sleigh"] = {"v": v, "omega": w, "theta": theta}
+    run.results["sleigh"] = {"turning_angle": run.plan.body.turning_angle(), "rate": run.plan.body.rate}
+
+
+def step_sleigh_path(run: Run):
+    x, y, nfev = run.plan.body.contact_point(run.data["t"])
+    run.data["sleigh"].update(x=x, y=y)
+    run.results["sleigh"] = {"turning_angle": run.plan.body.turning_angle(), "rate": run.plan.body.rate,
+                             "quadrature_evaluations": nfev}
+
+
+STEPS = {
+    "omega": step_omega,
+    "gamma_closed_form": step_gamma_closed_form,
+    "gamma_integrate": step_gamma_integrate,
+    "orientation_closed_form": step_orientation_closed_form,
+    "orientation_integrate": step_orientation_integrate,
+    "integrals": step_integrals,
+    "angle_closed_form": step_angle_closed_form,
+    "angle_integrate": step_angle_integrate,
+    "angle_enclosure": step_angle_enclosure,
+    "sleigh_velocities": step_sleigh_velocities,
+    "sleigh_path": step_sleigh_path,
+}
+
+
+def execute(plan: Plan, progress=None) -> Run:
+    """Run the computation steps of ``plan`` (figures are drawn by :func:`write_outputs`)."""
+    run = Run(plan)
+    compute = [s for s in plan.steps if not s.name.startswith("figure:")]
+    for i, step in enumerate(compute, 1):
+        if progress:
+            progress(f"[{i}/{len(compute)}] {step.name}: {step.method}")
+        start = time.perf_counter()
+        STEPS[step.name](run)
+        run.executed.append({"step": step.name, "method": step.method, "seconds": time.perf_counter() - start})
+    return run
+
+
+def _csv(path: Path, header: list[str], columns: list[np.ndarray]):
+    np.savetxt(path, np.column_stack(columns), delimiter=",", header=",".join(header), comments="", fmt="%.17g")
+
+
+def _data_files(run: Run, out: Path) -> list[str]:
+    written, d = [], run.data
+    if "omega" in d and "omega" in run.plan.scene.effects:
+        _csv(out / "omega.csv", ["t", "omega1", "omega2", "omega3"], [d["t"], *d["omega"].T])
+        written.append("omega.csv")
+    if "gamma" in d:
+        _csv(out / "gamma.csv", ["t", "gamma1", "gamma2", "gamma3"], [d["t"], *d["gamma"].T])
+        written.append("gamma.csv")
+    if "orientation" in d:
+        rows = d["orientation"].reshape(len(d["t"]), 9)
+        names = [f"gamma{i}_{j}" for i in (1, 2, 3) for j in (1, 2, 3)]
+        _csv(out / "orientation.csv", ["t", *names], [d["t"], *rows.T])
+        written.append("orientation.csv")
+    if "integrals" in d:
+        t, cols = d["integrals"]
+        _csv(out / "integrals.csv", ["t", *cols], [t, *cols.values()])
+        written.append("integrals.csv")
+    if "sleigh" in d:
+        s = d["sleigh"]
+        keys = [k for k in ("v", "omega", "theta", "x", "y") if k in s]
+        _csv(out / "sleigh.csv", ["t", *keys], [d["t"], *(s[k] for k in keys)])
+        written.append("sleigh.csv")
+    return written
+
+
+def _cell(text) -> str:
+    """A Markdown table cell: a ``|`` inside it (as in "|omega|") must not end the cell."""
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def _report(run: Run, files: list[str]) -> str:
+    plan = run.plan
+    lines = [f"# Scene {plan.scene.name}", "", plan.scene.description or "", "",
+             f"Scene file: `{plan.scene.path.name}`", "", "## Plan and what ran", "", "```", plan.explain(), "```", "",
+             "| step | method | seconds |", "|---|---|---|"]
+    lines += [f"| {_cell(e['step'])} | {_cell(e['method'])} | {e['seconds']:.3f} |" for e in run.executed]
+    lines += ["", "## Results", "", "```json", json.dumps(run.results, indent=1, sort_keys=True), "```", "",
+              "## Files", ""] + [f"- `{f}`" for f in files]
+    return "\n".join(lines) + "\n"
+
+
+def write_outputs(run: Run, out, progress=None) -> list[str]:
+    """Write data, figures, results.json and report.md into ``out`` atomically."""
+    with staged(out) as staging:
+        files = _data_files(run, staging)
+        from suslov.simulator import figures  # matplotlib only when a figure is drawn
+        for step in run.plan.steps:
+            if step.name.startswith("figure:"):
+                name = step.name.split(":", 1)[1]
+                if progress:
+                    progress(f"figure {name}")
+                start = time.perf_counter()
+                written = figures.draw(name, run, staging, run.plan.scene.figures_format)
+                run.executed.append({"step": step.name, "method": step.method,
+                                     "seconds": time.perf_counter() - start})
+                files.extend(written)
+        (staging / "results.json").write_text(json.dumps(
+            {"scene": run.plan.scene.name, "results": run.results,
+             "steps": [e["step"] for e in run.executed]}, indent=1, sort_keys=True) + "\n", encoding="utf-8")
+        files.append("results.json")
+        (staging / REPORT).write_text(_report(run, files), encoding="utf-8")
+    return files

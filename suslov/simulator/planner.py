@@ -1,0 +1,193 @@
+"""Turn a scene's effects into the smallest set of computations: a declarative effect graph (DESIGN.md, "Scenes").
+
+Each effect has *providers*, in order of preference; a provider is an engine step with the
+effects it needs and the condition under which it applies.  The plan is the minimal subgraph
+that yields the requested effects: for each one the first provider whose condition holds,
+then, recursively, what that provider needs; steps run in the order of ``ORDER`` (a
+topological order: a need always comes earlier).  The whole policy is the table
+``PROVIDERS`` below:
+
+* omega is always a certified closed form (``omega`` / ``omega_general``, paper eq:o12, omegas).
+* A Poisson solution (``gamma``, ``orientation``) is the certified basis ``gamma_basis``
+  (Theorem 6.1) when I13 = 0 and p is an odd integer with a certified basis; otherwise numerical
+  integration (heyoka's Taylor integrator by default, SciPy on request; ``suslov.simulator.taylor``,
+  ``suslov.simulator.integrate``).
+* The scattering angle is the closed form of Theorem 5.2 (corrected) whenever I13 = 0, for any
+  real p; only a general body integrates the ss solution.
+* ``scattering_angle_enclosure`` is always the validated integration (python-flint balls).
+* ``integral_drift`` needs omega and gamma; a figure needs the effect it draws, nothing more.
+
+A sweep scene uses the same providers per point (:func:`point_steps`); its plan counts the
+points of each class (:mod:`suslov.simulator.sweep`).
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from suslov.loader import gf
+from suslov.simulator.body import make_body
+from suslov.simulator.scene import FIGURES, Scene
+from suslov.simulator.sleigh import Sleigh
+
+
+@dataclass(frozen=True)
+class Step:
+    name: str
+    method: str
+    reason: str
+    needs: tuple = ()
+
+
+@dataclass(frozen=True)
+class Provider:
+    """Engine step ``step`` provides ``effect`` when ``applies(scene, body)``; it needs ``needs`` first."""
+
+    effect: str
+    step: str
+    needs: tuple
+    condition: str                          # what ``applies`` tests, in words (for --explain)
+    applies: Callable[[Scene, object], bool]
+    method: Callable[[Scene, object], str]
+
+
+def _sleigh(scene, body):
+    return isinstance(body, Sleigh)
+
+
+def _suslov(scene, body):
+    return not isinstance(body, Sleigh)
+
+
+def _closed_basis(scene, body):
+    return _suslov(scene, body) and body.odd_integer_p is not None
+
+
+def _special(scene, body):
+    return _suslov(scene, body) and body.special
+
+
+def integrator_name(scene) -> str:
+    if scene.method == "taylor":
+        return f"heyoka Taylor tol={scene.rtol:g}, step cap"
+    return f"SciPy {scene.method.split(':', 1)[1]} rtol={scene.rtol:g}, bounded step"
+
+
+def _start(scene):
+    return "boundary condition ss" if isinstance(scene.initial, str) else "gamma0 at t0"
+
+
+PROVIDERS = (
+    Provider("omega", "sleigh_velocities", (), "a Chaplygin sleigh", _sleigh,
+             lambda s, b: "closed form (tanh, sech, Gudermannian)"),
+    Provider("omega", "omega", (), "a Suslov body", _suslov,
+             lambda s, b: "closed form " + ("omega (p, d)" if b.special else "omega_general")),
+    Provider("contact_point", "sleigh_path", ("omega",), "a Chaplygin sleigh", _sleigh,
+             lambda s, b: "closed-form velocities + DOP853 quadrature"),
+    Provider("gamma", "gamma_closed_form", (), "I13 = 0 and p an odd integer with a certified basis",
+             _closed_basis, lambda s, b: f"gamma_basis (odd p = {b.odd_integer_p}), {_start(s)}"),
+    Provider("gamma", "gamma_integrate", (), "otherwise (no closed form)", _suslov,
+             lambda s, b: f"{integrator_name(s)}, {_start(s)}"),
+    Provider("orientation", "orientation_closed_form", (), "I13 = 0 and p an odd integer with a certified basis",
+             _closed_basis, lambda s, b: f"gamma_basis rows (odd p = {b.odd_integer_p})"),
+    Provider("orientation", "orientation_integrate", (), "otherwise (no closed form)", _suslov,
+             lambda s, b: f"{integrator_name(s)}, three solutions from the identity at t0"),
+    Provider("integral_drift", "integrals", ("omega", "gamma"), "a Suslov body", _suslov,
+             lambda s, b: "F1 (energy), F2 = |gamma|^2" + (", F3 polynomial (Theorem 6.2)"
+                                                           if _closed_basis(s, b) and b.odd_integer_p in gf.INTEGRAL_PS
+                                                           else "")),
+    Provider("scattering_angle", "angle_closed_form", (), "I13 = 0 (any real p)", _special,
+             lambda s, b: "scattering_angle(p, d) (Theorem 5.2, corrected)"),
+    Provider("scattering_angle", "angle_integrate", (), "a general body (I13 != 0): no closed form", _suslov,
+             lambda s, b: ("heyoka Taylor tol=1e-12" if s.method == "taylor" else "SciPy DOP853 rtol=1e-12")
+             + " on ss from the series start to lam t = 40"),
+    Provider("scattering_angle_enclosure", "angle_enclosure", (), "any Suslov body", _suslov,
+             lambda s, b: "validated integration in ball arithmetic (suslov.validated), 1e-20"),
+)
+ORDER = ("omega", "contact_point", "gamma", "orientation", "integral_drift", "scattering_angle",
+         "scattering_angle_enclosure")
+
+
+@dataclass
+class Plan:
+    scene: Scene
+    body: object
+    steps: list[Step] = field(default_factory=list)
+    graph: list = field(default_factory=list)     # (effect, chosen Provider, providers not chosen)
+
+    def names(self) -> list[str]:
+        return [s.name for s in self.steps]
+
+    def explain(self) -> str:
+        lines = [f"scene {self.scene.name!r} ({self.scene.path})", f"body: {describe(self.body)}",
+                 "effect graph (effect <- step [condition]; needs):"]
+        for effect, chosen, others in self.graph:
+            needs = ", ".join(chosen.needs) or "-"
+            lines.append(f"  {effect} <- {chosen.step} [{chosen.condition}]; needs: {needs}")
+            lines += [f"      not {p.step} [{p.condition}]: does not apply" for p in others]
+        lines.append("steps:")
+        lines += [f"{i}. {s.name}: {s.method}  [{s.reason}]" for i, s in enumerate(self.steps, 1)]
+        return "\n".join(lines)
+
+
+def describe(body) -> str:
+    if isinstance(body, Sleigh):
+        return (f"Chaplygin sleigh: m = {body.mass:g}, J = {body.inertia:g}, offset = {body.offset:g}, "
+                f"V = {body.speed:g}")
+    return body.describe()
+
+
+def build_body(scene: Scene):
+    b = scene.body
+    if b["kind"] == "sleigh":
+        return Sleigh(b["mass"], b["inertia"], b["offset"], scene.speed)
+    return make_body(b.get("inertia"), b.get("p"), b.get("d"), scene.energy)
+
+
+def choose(effect: str, scene: Scene, body) -> tuple[Provider, list[Provider]]:
+    """The first provider of ``effect`` whose condition holds, and the preferred ones that did not."""
+    candidates = [p for p in PROVIDERS if p.effect == effect]
+    for i, provider in enumerate(candidates):
+        if provider.applies(scene, body):
+            return provider, candidates[:i]
+    raise ValueError(f"effect {effect!r} has no provider for {describe(body)}")
+
+
+def resolve(wanted, scene: Scene, body) -> dict:
+    """effect -> (Provider, providers not chosen) for ``wanted`` and everything they need."""
+    chosen: dict = {}
+    stack = list(wanted)
+    while stack:
+        effect = stack.pop()
+        if effect in chosen:
+            continue
+        chosen[effect] = choose(effect, scene, body)
+        stack.extend(chosen[effect][0].needs)
+    return chosen
+
+
+def point_steps(effects, scene: Scene, body) -> list[str]:
+    """The step names for ``effects`` of one body (a sweep point), in execution order."""
+    chosen = resolve(effects, scene, body)
+    return [chosen[e][0].step for e in ORDER if e in chosen]
+
+
+def make_plan(scene: Scene) -> Plan:
+    """The plan for a one-body ``scene`` (no computation beyond building the body)."""
+    body = build_body(scene)
+    plan = Plan(scene, body)
+    wanted = list(scene.effects) + [FIGURES[f] for f in scene.figures]
+    chosen = resolve(wanted, scene, body)
+    for effect in ORDER:
+        if effect not in chosen:
+            continue
+        provider, others = chosen[effect]
+        plan.graph.append((effect, provider, others))
+        requested = [w for w in dict.fromkeys(wanted) if w == effect or effect in chosen[w][0].needs]
+        reason = (f"{effect} requested" if effect in wanted else f"needed by {', '.join(requested)}")
+        plan.steps.append(Step(provider.step, provider.method(scene, body), reason, provider.needs))
+    for name in scene.figures:
+        plan.steps.append(Step(f"figure:{name}", "matplotlib (Agg), " + ", ".join(f.upper() for f in
+                                                                                  scene.figures_format),
+                               f"figure {name} requested", (FIGURES[name],)))
+    return plan

@@ -1,0 +1,270 @@
+"""Sweep scenes: the scattering angle (paper section 5.1, Theorem 5.2, eq:o12) over many bodies and energies.
+
+A sweep scene (:mod:`suslov.simulator.sweep_spec`) names points; each point is a body.  The method per
+point comes from the planner's provider table (:func:`suslov.simulator.planner.point_steps`): the closed
+form of Theorem 5.2 when I13 = 0, Taylor integration of the ss solution otherwise, the validated
+ball integration for ``scattering_angle_enclosure``.  Points are cut into chunks and run by
+:mod:`suslov.executor` (local processes or Dask); finished chunks are kept beside the output
+directory (``.NAME.chunks``) until the whole sweep succeeded, so an interrupted sweep resumes.
+
+The scattering angle of a general body (I13 != 0) is the spatial angle between the limit
+positions of the body axis ``n = u/|u|`` about which the body rotates at t -> -oo and t -> +oo:
+with gamma the ss solution (gamma(-oo) = -n), ``cos(Delta psi) = -<gamma(+oo), n>``.  For I13 = 0
+this is Theorem 5.2's angle, ``scattering_angle(p, d)`` (checked in tests/test_sweep.py).
+
+Output (written atomically into ``--out``): ``results.csv`` (``results.parquet`` too when pyarrow
+is importable) with one row per point in point order: the input columns, one column per scalar
+effect, ``<effect>_error`` (the error estimate or the ball's radius), ``<effect>_method``,
+``energy_spread`` (largest difference of the angle between the energies of one body, when the
+sweep lists several energies) and ``error`` (why a point was refused; empty otherwise); the
+figures; ``results.json`` (summary) and ``report.md``.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import shutil
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+
+from suslov import executor
+from suslov.loader import gf
+from suslov.simulator.body import make_body
+from suslov.simulator.engine import numeric_angle
+from suslov.simulator.planner import point_steps
+from suslov.simulator.sweep_outputs import columns_of, write_sweep_outputs
+from suslov.simulator.sweep_spec import tensor_of
+
+SAMPLE_FOR_EXPLAIN = 20_000
+# seconds per point and step, measured by bench/bench_simulator.py on the 2-core machine (rounded up)
+COST = {"angle_closed_form": 3e-5, "angle_integrate:taylor": 5e-4, "angle_integrate:scipy": 2.0,
+        "angle_enclosure": 0.3, "refused": 2e-5}
+WORKER_START = 1.0   # seconds to start a worker process (imports 0.4 s, Taylor compilation 0.5 s)
+ENCLOSURE_DIGITS = 15
+
+
+@dataclass
+class SweepPlan:
+    scene: object
+    classes: dict          # tuple of step names (or ("refused",)) -> number of points
+    sampled: bool
+    chunk: int
+    chunks: int
+    workers: int
+    scheduler: str | None
+
+    def estimate(self) -> float:
+        total = 0.0
+        for steps, count in self.classes.items():
+            total += count * sum(COST[_cost_key(s, self.scene.method)] for s in steps)
+        parallel = 1 if self.scheduler else self.workers
+        return total / parallel + (WORKER_START if self.workers > 1 or self.scheduler else 0.0)
+
+    def explain(self) -> str:
+        sw = self.scene.sweep
+        axes = ", ".join(f"{c} ({len(np.unique(sw.values[:, i]))})" for i, c in enumerate(sw.columns)
+                         if len(np.unique(sw.values[:, i])) > 1) or "one point"
+        lines = [f"scene {self.scene.name!r} ({self.scene.path})",
+                 f"sweep: {len(sw)} points ({'grid over ' + axes if sw.source == 'grid' else sw.source})",
+                 f"effects: {', '.join(self.scene.effects)}",
+                 "point classes (steps per point from the effect graph)"
+                 + (f", estimated from a sample of {SAMPLE_FOR_EXPLAIN}" if self.sampled else "") + ":"]
+        for steps, count in sorted(self.classes.items(), key=lambda kv: -kv[1]):
+            lines.append(f"  {count} points: {' + '.join(steps)}")
+        where = (f"Dask scheduler {self.scheduler}" if self.scheduler
+                 else f"local processes, {self.workers} worker{'s' if self.workers > 1 else ''}")
+        lines.append(f"executor: {where}; {self.chunks} chunks of up to {self.chunk} points")
+        lines.append(f"estimated cost: about {self.estimate():.1f} s")
+        return "\n".join(lines)
+
+
+def _cost_key(step: str, method: str) -> str:
+    if step == "angle_integrate":
+        return "angle_integrate:taylor" if method == "taylor" else "angle_integrate:scipy"
+    return step
+
+
+def _options(scene) -> dict:
+    return {"effects": list(scene.effects), "method": scene.method, "kind": scene.sweep.kind,
+            "columns": list(scene.sweep.columns)}
+
+
+def point_body(point: dict, kind: str):
+    """The body of one sweep point; ValueError (with the reason) when it cannot be a body."""
+    if kind == "pd":
+        return make_body(None, point["p"], point["d"], point.get("energy"))
+    return make_body(tensor_of(point), energy=point.get("energy"))
+
+
+def classify(point: dict, options: dict) -> tuple:
+    try:
+        body = point_body(point, options["kind"])
+    except ValueError:
+        return ("refused",)
+    return tuple(point_steps(options["effects"], SimpleNamespace(method=options["method"]), body))
+
+
+def plan_sweep(scene, workers: int | None = None, scheduler: str | None = None) -> SweepPlan:
+    """Classes of points, chunking and cost (no integration: bodies are built, nothing more)."""
+    sw, options = scene.sweep, _options(scene)
+    n = len(sw)
+    index = np.arange(n)
+    sampled = n > SAMPLE_FOR_EXPLAIN
+    if sampled:
+        index = np.sort(np.random.default_rng(0).choice(n, SAMPLE_FOR_EXPLAIN, replace=False))
+    classes: dict = {}
+    for i in index:
+        key = classify(sw.point(int(i)), options)
+        classes[key] = classes.get(key, 0) + 1
+    if sampled:
+        classes = {k: round(v * n / len(index)) for k, v in classes.items()}
+    auto = workers is None
+    workers = executor.default_workers() if auto else max(1, workers)
+    plan = SweepPlan(scene, classes, sampled, 1, 1, 1, scheduler)
+    if auto and not scheduler and plan.estimate() < 2 * WORKER_START:
+        workers = 1   # starting processes would cost more than the work
+    parallel = 4 if scheduler else workers
+    chunk = sw.chunk or max(min(n, 16), min(2000, math.ceil(n / (8 * parallel))))
+    return SweepPlan(scene, classes, sampled, chunk, math.ceil(n / chunk), workers, scheduler)
+
+
+def _angle(body, steps, method, point):
+    if "angle_closed_form" in steps:
+        # a (p, d) point is evaluated at its own p, d (the body's are recomputed from a tensor, to rounding)
+        p, d = (point["p"], point["d"]) if "p" in point else (body.p, body.d)
+        return float(gf.scattering_angle(p, d)), 1e-13 * math.pi, "closed form (Theorem 5.2)"
+    angle, error, _ = numeric_angle(SimpleNamespace(method=method), body)   # the one-body scenes' choice
+    return angle, error, ("heyoka Taylor" if method == "taylor" else "SciPy DOP853") + " (ss, lam t = 40)"
+
+
+def evaluate_point(point: dict, options: dict) -> dict:
+    """The scalar effects of one point; a point that is not a body gets its reason in ``error``."""
+    try:
+        body = point_body(point, options["kind"])
+    except ValueError as exc:
+        return {"error": f"refused: {exc}"}
+    steps = point_steps(options["effects"], SimpleNamespace(method=options["method"]), body)
+    row: dict = {}
+    try:
+        if "scattering_angle" in options["effects"]:
+            angle, error, how = _angle(body, steps, options["method"], point)
+            row |= {"scattering_angle": angle, "scattering_angle_error": error, "scattering_angle_method": how}
+        if "angle_enclosure" in steps:
+            from suslov.validated import scattering_angle_enclosure
+            ball = scattering_angle_enclosure(*body.entries, digits=ENCLOSURE_DIGITS).angle
+            row |= {"scattering_angle_enclosure": float(ball.mid()),
+                    "scattering_angle_enclosure_error": float(ball.rad()),
+                    "scattering_angle_enclosure_method": "validated ball integration (rigorous)"}
+    except (RuntimeError, ArithmeticError, ValueError) as exc:
+        return {"error": f"failed: {type(exc).__name__}: {exc}"}
+    return row
+
+
+def evaluate_chunk(task) -> list:
+    """Executor work: ``task = (options, rows)``, rows as lists of floats in ``options['columns']`` order."""
+    options, rows = task
+    return [evaluate_point(dict(zip(options["columns"], row)), options) for row in rows]
+
+
+def _code_version() -> str:
+    """A hash of the code a chunk's result depends on (the runtime and the generated module)."""
+    root = Path(__file__).resolve().parents[1]   # the whole suslov package (simulator, runtime, kernel)
+    files = sorted(root.rglob("*.py")) + [Path(gf.__file__).resolve()]
+    digest = hashlib.sha256()
+    for f in files:
+        digest.update(f.name.encode() + f.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+class ChunkTasks:
+    """The chunks of a sweep as a lazy sequence: ``tasks[i] = (options, rows)`` is built when asked for.
+
+    Rows are never materialised as Python lists for the whole sweep (a 10^7-point sweep spent 40 s
+    and 3.8 GB that way before its first chunk); the executor asks for a chunk when it submits it.
+    """
+
+    def __init__(self, scene, chunk: int):
+        self.options, self.values, self.chunk = _options(scene), scene.sweep.values, chunk
+
+    def __len__(self) -> int:
+        return math.ceil(len(self.values) / self.chunk)
+
+    def __getitem__(self, i: int):
+        if not 0 <= i < len(self):
+            raise IndexError(i)
+        return self.options, self.values[i * self.chunk:(i + 1) * self.chunk].tolist()
+
+
+def chunk_tasks(scene, chunk: int) -> tuple[ChunkTasks, list]:
+    """(tasks, keys): the key hashes the chunk's rows (their float64 bytes), the options and the code version."""
+    tasks = ChunkTasks(scene, chunk)
+    prefix = json.dumps([tasks.options, _code_version()], sort_keys=True).encode()
+    values = np.ascontiguousarray(tasks.values, dtype="<f8")
+    keys = [hashlib.sha256(prefix + values[start:start + chunk].tobytes()).hexdigest()[:32]
+            for start in range(0, len(values), chunk)]
+    return tasks, keys
+
+
+def assemble(scene, rows: list) -> dict:
+    """Column name -> list of values, in point order (inputs first, ``error`` last)."""
+    sw = scene.sweep
+    table = {c: sw.values[:, i].tolist() for i, c in enumerate(sw.columns)}
+    for name in columns_of(scene)[len(sw.columns):]:
+        if name == "energy_spread":
+            continue
+        empty = "" if name.endswith("_method") or name == "error" else math.nan
+        table[name] = [r.get(name, empty) for r in rows]
+    if "energy_spread" in columns_of(scene):
+        angles = np.array(table["scattering_angle"], dtype=float).reshape(-1, sw.energies)
+        spread = angles.max(axis=1) - angles.min(axis=1)   # NaN when any energy of the body failed
+        table["energy_spread"] = np.repeat(spread, sw.energies).tolist()
+        table = {c: table[c] for c in columns_of(scene)}
+    return table
+
+
+def chunk_dir(out: Path) -> Path:
+    return out.parent / f".{out.name}.chunks"
+
+
+class LargeSweep(ValueError):
+    """A sweep above :data:`CONFIRM_ABOVE` points or :data:`CONFIRM_SECONDS` of estimated work, not confirmed."""
+
+
+CONFIRM_ABOVE = 200_000     # points; beyond, or beyond CONFIRM_SECONDS, a sweep runs only when confirmed
+CONFIRM_SECONDS = 3600.0
+
+
+def run_sweep(scene, out, *, scheduler: str | None = None, workers: int | None = None, progress=None,
+              confirmed: bool = False):
+    """Compute every point and write the outputs atomically; returns (table, plan, seconds, chunks computed).
+
+    A sweep of more than ``CONFIRM_ABOVE`` points, or estimated above ``CONFIRM_SECONDS``, raises
+    :class:`LargeSweep` (with the size and the estimate) before any work unless ``confirmed``
+    (``suslov simulate --yes``).
+    """
+    from suslov.simulator.outputs import check_out
+
+    out = Path(out)
+    check_out(out)
+    plan = plan_sweep(scene, workers, scheduler)
+    if not confirmed and (len(scene.sweep) > CONFIRM_ABOVE or plan.estimate() > CONFIRM_SECONDS):
+        raise LargeSweep(f"{scene.path}: {len(scene.sweep)} points, estimated {plan.estimate():.0f} s on "
+                         f"{plan.workers} worker(s): above {CONFIRM_ABOVE} points or {CONFIRM_SECONDS:.0f} s, "
+                         "so it runs only when confirmed: add --yes (suslov simulate ... --yes)")
+    if progress:
+        progress(f"{len(scene.sweep)} points in {plan.chunks} chunks; estimated {plan.estimate():.1f} s")
+    tasks, keys = chunk_tasks(scene, plan.chunk)
+    store = executor.ChunkStore(chunk_dir(out))
+    start = time.perf_counter()
+    results, computed = executor.run_chunks(evaluate_chunk, tasks, keys, store=store, scheduler=scheduler,
+                                            workers=plan.workers, progress=progress)
+    seconds = time.perf_counter() - start
+    table = assemble(scene, [row for chunk in results for row in chunk])
+    write_sweep_outputs(scene, plan, table, out, seconds, computed, progress)
+    shutil.rmtree(chunk_dir(out), ignore_errors=True)
+    return table, plan, seconds, computed

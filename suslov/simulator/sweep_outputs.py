@@ -1,0 +1,180 @@
+"""A sweep's outputs: the results table (CSV, Parquet), its figures, a summary and a report.
+
+``results.csv`` holds every point in point order (floats with 17 significant digits, so the table
+round-trips exactly and is byte-identical whatever executor computed it); ``results.parquet`` is
+the same table when pyarrow is importable.  Figures (paper section 5.1: the scattering angle over
+a family of bodies): ``map`` draws each scalar effect over the sweep's two varying fields (at the
+first energy; and the energy spread when there are several), ``histogram`` its distribution.
+"""
+from __future__ import annotations
+
+import csv
+import json
+import math
+
+import numpy as np
+
+from suslov.simulator.outputs import REPORT, staged
+
+SCALARS = ("scattering_angle", "scattering_angle_enclosure", "energy_spread")
+LABELS = {"scattering_angle": r"$\Delta\psi$ (rad)", "scattering_angle_enclosure": r"$\Delta\psi$ ball midpoint (rad)",
+          "energy_spread": r"energy spread $\Delta\psi_{\max} - \Delta\psi_{\min}$ (rad)"}
+SPREAD_FLOOR = 1e-17   # a spread of exactly 0 (equal in every bit) is drawn at this value on the log scale
+AXIS_LABELS = {"I11": "$I_{11}$", "I22": "$I_{22}$", "I33": "$I_{33}$", "I12": "$I_{12}$", "I13": "$I_{13}$",
+               "I23": "$I_{23}$", "p": "$p$", "d": "$d$"}
+
+
+def _cell(value) -> str:
+    if isinstance(value, float):
+        return "" if math.isnan(value) else repr(value)
+    return str(value)
+
+
+def write_csv(path, table: dict):
+    names = list(table)
+    with path.open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.writer(handle, lineterminator="\n")
+        writer.writerow(names)
+        for row in zip(*(table[n] for n in names)):
+            writer.writerow([_cell(v) for v in row])
+
+
+def write_parquet(path, table: dict) -> bool:
+    try:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+    except ImportError:
+        return False
+    pq.write_table(pa.table(table), path)
+    return True
+
+
+def summary(scene, table: dict) -> dict:
+    """Counts and ranges per scalar column (finite values only)."""
+    errors = [e for e in table["error"] if e]
+    out = {"points": len(table["error"]), "refused_or_failed": len(errors),
+           "first_errors": errors[:5], "columns": {}}
+    for name in SCALARS:
+        if name in table:
+            values = np.array(table[name], dtype=float)
+            finite = values[np.isfinite(values)]
+            if finite.size:
+                out["columns"][name] = {"min": float(finite.min()), "max": float(finite.max()),
+                                        "finite": int(finite.size)}
+                if f"{name}_error" in table:
+                    err = np.array(table[f"{name}_error"], dtype=float)
+                    out["columns"][name]["largest_error_estimate"] = float(np.nanmax(err))
+    return out
+
+
+def _first_energy(scene, values: np.ndarray) -> np.ndarray:
+    return values[::scene.sweep.energies]
+
+
+def draw_map(scene, table: dict, staging, formats) -> list[str]:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    sw = scene.sweep
+    if len(sw.varying) != 2:
+        raise ValueError(f"figure 'map' needs a grid sweep with exactly two varying fields (besides energy); "
+                         f"this sweep varies {', '.join(sw.varying) or 'none'}: use 'histogram'")
+    xname, yname = sw.varying
+    x = np.unique(_first_energy(scene, np.array(table[xname])))
+    y = np.unique(_first_energy(scene, np.array(table[yname])))
+    panels = [n for n in SCALARS if n in table]
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.4), squeeze=False)
+    xi = np.searchsorted(x, _first_energy(scene, np.array(table[xname])))
+    yi = np.searchsorted(y, _first_energy(scene, np.array(table[yname])))
+    for ax, name in zip(axes[0], panels):
+        grid = np.full((len(y), len(x)), np.nan)
+        grid[yi, xi] = _first_energy(scene, np.array(table[name], dtype=float))
+        norm = None
+        label = LABELS[name]
+        if name == "energy_spread":
+            from matplotlib.colors import LogNorm
+            grid = np.where(np.isfinite(grid), np.maximum(grid, SPREAD_FLOOR), np.nan)
+            finite = grid[np.isfinite(grid)]
+            norm = LogNorm(finite.min(), max(finite.max(), 10 * SPREAD_FLOOR)) if finite.size else None
+            label += f"; 0 drawn at {SPREAD_FLOOR:g}"
+        mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(grid), shading="nearest", norm=norm, cmap="viridis")
+        fig.colorbar(mesh, ax=ax, label=label)
+        ax.set_xlabel(AXIS_LABELS.get(xname, xname))
+        ax.set_ylabel(AXIS_LABELS.get(yname, yname))
+        title = LABELS[name].rsplit(" (", 1)[0]
+        ax.set_title(title + (f" (energy {table['energy'][0]:g})" if sw.energies > 1 and name != "energy_spread"
+                              else ""), fontsize=10)
+    fig.suptitle(scene.title or scene.name, fontsize=11)
+    fig.tight_layout()
+    return _save(fig, "map", staging, formats)
+
+
+def draw_histogram(scene, table: dict, staging, formats) -> list[str]:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    panels = [n for n in SCALARS if n in table]
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.0), squeeze=False)
+    for ax, name in zip(axes[0], panels):
+        values = np.array(table[name], dtype=float)
+        values = values[np.isfinite(values)]
+        ax.hist(values, bins=min(50, max(5, int(np.sqrt(values.size)))), color="tab:blue",
+                label=f"{values.size} points")
+        ax.set_xlabel(LABELS[name])
+        ax.set_ylabel("points")
+        ax.legend()
+    fig.suptitle(scene.title or scene.name, fontsize=11)
+    fig.tight_layout()
+    return _save(fig, "histogram", staging, formats)
+
+
+def _save(fig, name, staging, formats) -> list[str]:
+    import matplotlib.pyplot as plt
+
+    from suslov.simulator.figures import save_formats
+    written = save_formats(fig, staging / name, formats)
+    plt.close(fig)
+    return written
+
+
+def _report(scene, plan, files, seconds, computed, stats) -> str:
+    lines = [f"# Sweep {scene.name}", "", scene.description or "", "", f"Scene file: `{scene.path.name}`", "",
+             "## Plan", "", "```", plan.explain(), "```", "",
+             f"Computed {computed} of {plan.chunks} chunks in {seconds:.2f} s "
+             f"({plan.chunks - computed} resumed from a previous run).", "",
+             "## Summary", "", "```json", json.dumps(stats, indent=1, sort_keys=True), "```", "",
+             "## Files", ""] + [f"- `{f}`" for f in files]
+    return "\n".join(lines) + "\n"
+
+
+def columns_of(scene) -> list[str]:
+    """The table's columns: the inputs, three per effect (value, _error, _method), energy_spread, error."""
+    names = list(scene.sweep.columns)
+    for effect in scene.effects:
+        names += [effect, f"{effect}_error", f"{effect}_method"]
+    if scene.sweep.energies > 1 and "scattering_angle" in scene.effects:
+        names.append("energy_spread")
+    return names + ["error"]
+
+
+def write_sweep_outputs(scene, plan, table: dict, out, seconds: float, computed: int, progress=None) -> list[str]:
+    """Write the table, figures, results.json and report.md into ``out`` atomically."""
+    assert list(table) == columns_of(scene)
+    with staged(out) as staging:
+        write_csv(staging / "results.csv", table)
+        files = ["results.csv"]
+        if write_parquet(staging / "results.parquet", table):
+            files.append("results.parquet")
+        for name in scene.figures:
+            if progress:
+                progress(f"figure {name}")
+            draw = draw_map if name == "map" else draw_histogram
+            files += draw(scene, table, staging, scene.figures_format)
+        stats = summary(scene, table)
+        (staging / "results.json").write_text(json.dumps({"scene": scene.name, "summary": stats}, indent=1,
+                                                         sort_keys=True) + "\n", encoding="utf-8")
+        files.append("results.json")
+        (staging / REPORT).write_text(_report(scene, plan, files, seconds, computed, stats), encoding="utf-8")
+    return files

@@ -1,0 +1,243 @@
+"""Sweep scenes: many bodies instead of one (the ``[sweep]`` table, which takes the place of ``[body]``).
+
+The paper's open problem (Conclusion: the general case I13 != 0, no closed form) asks for maps of
+the scattering angle (section 5.1, Theorem 5.2) over inertia tensors and energies.  A sweep names
+the points; the planner chooses a method per point; the executor runs them in chunks.
+
+Schema (every field optional unless stated; values are a number, a list of numbers, or a range)::
+
+    [sweep]
+    # exactly one of: bodies = "FILE.csv" | p and d | I11, I22 and I33 (I12, I13, I23 default 0)
+    bodies = "bodies.csv"          # path relative to the scene file; columns I11, I22, I33, I12, I13, I23,
+                                   # optional energy; one point per row
+    I11 = 2.0
+    I13 = {linear = [-0.4, 0.4], count = 41}       # count equally spaced values, ends included
+    I23 = {log = [0.01, 1.0], count = 20}          # logarithmically spaced, both ends > 0
+    d = {random = [0.05, 2.0], count = 100, seed = 7}   # seeded uniform values (numpy default_rng)
+    energy = [0.5, 1.0, 2.0]       # kinetic energies; default: rate lam = 1
+    chunk = 256                    # points per chunk (default: about 8 chunks per worker)
+
+Points are the Cartesian product of the fields in the order p, d or I11, I22, I33, I12, I13, I23,
+then energy (the energies of one body are consecutive rows).  Errors in the scene or the CSV
+(missing column, non-numeric cell, NaN, a negative count, 0 points, more than ``MAX_POINTS``) are
+:class:`~suslov.simulator.scene.SceneError` naming the file, the row or the field; a point that is
+physically impossible (a tensor that is not positive definite, say) is refused on its own row
+by the sweep, not here.
+"""
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from suslov.simulator.scene_errors import SceneError
+
+MAX_POINTS = 10_000_000
+TENSOR_FIELDS = ("I11", "I22", "I33", "I12", "I13", "I23")
+PD_FIELDS = ("p", "d")
+RANGE_KINDS = ("linear", "log", "random")
+ALLOWED = ("bodies", *PD_FIELDS, *TENSOR_FIELDS, "energy", "chunk")
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """The points of a sweep: ``columns`` names the inputs, ``values`` has one row per point."""
+
+    columns: tuple
+    values: np.ndarray             # shape (points, len(columns)), float64
+    kind: str                      # "tensor" or "pd"
+    varying: tuple                 # the fields with more than one value (grid axes), in column order
+    energies: int                  # number of energies per body (consecutive rows), 1 without a list
+    chunk: int | None
+    source: str                    # "grid" or the CSV path
+
+    def __len__(self) -> int:
+        return len(self.values)
+
+    def point(self, i: int) -> dict:
+        return dict(zip(self.columns, (float(x) for x in self.values[i])))
+
+
+def _error(path, field_name, reason):
+    return SceneError(path, field_name, reason)
+
+
+def _finite(path, name, value):
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise _error(path, name, f"{value!r} is not a number")
+    if not math.isfinite(value):
+        raise _error(path, name, f"{value!r} is not finite")
+    return float(value)
+
+
+def _count(path, name, table) -> int:
+    count = table.get("count")
+    if isinstance(count, bool) or not isinstance(count, int):
+        raise _error(path, f"{name}.count", f"{count!r}: must be an integer (the number of values)")
+    if count < 0:
+        raise _error(path, f"{name}.count", f"{count}: a count cannot be negative")
+    if count > MAX_POINTS:
+        raise _error(path, f"{name}.count", f"{count}: more than {MAX_POINTS} values")
+    return count
+
+
+def _range(path, name, table) -> np.ndarray:
+    kinds = [k for k in RANGE_KINDS if k in table]
+    unknown = sorted(set(table) - {*RANGE_KINDS, "count", "seed"})
+    if unknown:
+        raise _error(path, f"{name}.{unknown[0]}", f"unknown key; a range has one of {', '.join(RANGE_KINDS)}, "
+                     "count and (random only) seed")
+    if len(kinds) != 1:
+        raise _error(path, name, f"a range needs exactly one of {', '.join(RANGE_KINDS)} (= [start, stop])")
+    kind = kinds[0]
+    ends = table[kind]
+    if not isinstance(ends, list) or len(ends) != 2:
+        raise _error(path, f"{name}.{kind}", f"{ends!r}: must be [start, stop]")
+    a, b = (_finite(path, f"{name}.{kind}[{i}]", ends[i]) for i in range(2))
+    count = _count(path, name, table)
+    if "seed" in table and kind != "random":
+        raise _error(path, f"{name}.seed", "only a random range takes a seed")
+    if kind == "linear":
+        return np.linspace(a, b, count)
+    if kind == "log":
+        if not (a > 0 and b > 0):
+            raise _error(path, f"{name}.log", f"[{a}, {b}]: a logarithmic range needs both ends > 0")
+        return np.geomspace(a, b, count)
+    seed = table.get("seed", 0)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise _error(path, f"{name}.seed", f"{seed!r}: must be a non-negative integer")
+    if not a < b:
+        raise _error(path, f"{name}.random", f"[{a}, {b}]: need start < stop")
+    return np.random.default_rng(seed).uniform(a, b, count)
+
+
+def _values(path, name, value) -> np.ndarray:
+    field_name = f"sweep.{name}"
+    if isinstance(value, dict):
+        return _range(path, field_name, value)
+    if isinstance(value, list):
+        if len(value) > MAX_POINTS:
+            raise _error(path, field_name, f"more than {MAX_POINTS} values")
+        return np.array([_finite(path, f"{field_name}[{i}]", v) for i, v in enumerate(value)], dtype=float)
+    return np.array([_finite(path, field_name, value)])
+
+
+def _energy_positive(path, energies):
+    for i, e in enumerate(energies):
+        if not e > 0:
+            raise _error(path, "sweep.energy", f"value {i}: {e!r}: an energy must be > 0")
+
+
+def read_bodies_csv(path: Path, scene_path) -> tuple[tuple, np.ndarray]:
+    """Columns and rows of a bodies file; errors name the file, the row (1 = first data row) and the column."""
+    if not path.is_file():
+        raise _error(scene_path, "sweep.bodies", f"{path}: file not found")
+    with path.open(newline="", encoding="utf-8") as handle:
+        reader = csv.reader(handle)
+        try:
+            header = [h.strip() for h in next(reader)]
+        except StopIteration:
+            raise _error(path, "header", "the file is empty (need columns I11, I22, I33, I12, I13, I23)") from None
+        duplicated = sorted({c for c in header if header.count(c) > 1})
+        if duplicated:
+            raise _error(path, "header", f"column {duplicated[0]!r} appears {header.count(duplicated[0])} times; "
+                         "each column must appear once")
+        missing = [c for c in TENSOR_FIELDS if c not in header]
+        if missing:
+            raise _error(path, "header", f"missing column {missing[0]!r} (need {', '.join(TENSOR_FIELDS)}; "
+                         "optional energy)")
+        columns = tuple(c for c in (*TENSOR_FIELDS, "energy") if c in header)
+        index = [header.index(c) for c in columns]
+        unknown = sorted(set(header) - set(columns))
+        if unknown:
+            raise _error(path, "header", f"unknown column {unknown[0]!r}")
+        rows = []
+        for number, row in enumerate(reader, 1):
+            if not row or all(not cell.strip() for cell in row):
+                continue
+            if len(row) != len(header):
+                raise _error(path, f"row {number}", f"{len(row)} cells, the header has {len(header)}")
+            values = []
+            for column, k in zip(columns, index):
+                cell = row[k].strip()
+                try:
+                    x = float(cell)
+                except ValueError:
+                    raise _error(path, f"row {number}, column {column}", f"{cell!r} is not a number") from None
+                if not math.isfinite(x):
+                    raise _error(path, f"row {number}, column {column}", f"{cell!r} is not finite")
+                values.append(x)
+            rows.append(values)
+            if len(rows) > MAX_POINTS:
+                raise _error(path, "rows", f"more than {MAX_POINTS} points")
+    if not rows:
+        raise _error(path, "rows", "no data rows: a sweep needs at least one point")
+    return columns, np.array(rows, dtype=float)
+
+
+def parse_sweep(path, table) -> Sweep:
+    """Validate a ``[sweep]`` table and expand its points (see the module docstring)."""
+    if not isinstance(table, dict):
+        raise _error(path, "sweep", "must be a table ([sweep])")
+    unknown = sorted(set(table) - set(ALLOWED))
+    if unknown:
+        raise _error(path, f"sweep.{unknown[0]}", f"unknown field; allowed: {', '.join(ALLOWED)}")
+    chunk = table.get("chunk")
+    if chunk is not None and (isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1):
+        raise _error(path, "sweep.chunk", f"{chunk!r}: must be a positive integer")
+    has_csv = "bodies" in table
+    has_pd = any(k in table for k in PD_FIELDS)
+    has_tensor = any(k in table for k in TENSOR_FIELDS)
+    if has_csv + has_pd + has_tensor != 1:
+        raise _error(path, "sweep", "give exactly one of: bodies = \"FILE.csv\", p and d, or I11, I22, I33 "
+                     "(with optional I12, I13, I23)")
+    if has_csv:
+        if not isinstance(table["bodies"], str):
+            raise _error(path, "sweep.bodies", "must be a path (string) relative to the scene file")
+        csv_path = Path(path).parent / table["bodies"]
+        columns, values = read_bodies_csv(csv_path, path)
+        if "energy" in columns:
+            if "energy" in table:
+                raise _error(path, "sweep.energy", f"{csv_path} has an energy column: give energies in one place")
+            _energy_positive(csv_path, values[:, columns.index("energy")])
+            return Sweep(columns, values, "tensor", (), 1, chunk, str(csv_path))
+        energies = _values(path, "energy", table["energy"]) if "energy" in table else None
+        if energies is None:
+            return Sweep(columns, values, "tensor", (), 1, chunk, str(csv_path))
+        _energy_positive(path, energies)
+        grid = np.repeat(values, len(energies), axis=0)
+        grid = np.column_stack([grid, np.tile(energies, len(values))])
+        return Sweep((*columns, "energy"), grid, "tensor", (), len(energies), chunk, str(csv_path))
+    names = PD_FIELDS if has_pd else TENSOR_FIELDS
+    required = PD_FIELDS if has_pd else TENSOR_FIELDS[:3]
+    for key in required:
+        if key not in table:
+            raise _error(path, f"sweep.{key}", "missing (" + ("p and d go together" if has_pd else
+                         "a tensor sweep needs I11, I22 and I33; I12, I13, I23 default to 0") + ")")
+    axes = [(name, _values(path, name, table.get(name, 0.0))) for name in names]
+    if "energy" in table:
+        energies = _values(path, "energy", table["energy"])
+        _energy_positive(path, energies)
+        axes.append(("energy", energies))
+    total = math.prod(len(v) for _, v in axes)
+    if total == 0:
+        empty = next(n for n, v in axes if len(v) == 0)
+        raise _error(path, f"sweep.{empty}", "has no values: the sweep has 0 points")
+    if total > MAX_POINTS:
+        raise _error(path, "sweep", f"{total} points: more than {MAX_POINTS} (split the sweep)")
+    mesh = np.meshgrid(*[v for _, v in axes], indexing="ij")
+    values = np.column_stack([m.ravel() for m in mesh])
+    varying = tuple(n for n, v in axes if len(v) > 1 and n != "energy")
+    energies = len(axes[-1][1]) if axes[-1][0] == "energy" else 1
+    return Sweep(tuple(n for n, _ in axes), values, "pd" if has_pd else "tensor", varying, energies, chunk, "grid")
+
+
+def tensor_of(point: dict) -> np.ndarray:
+    """The symmetric 3x3 tensor of a tensor-sweep point."""
+    g = point.get
+    return np.array([[g("I11"), g("I12", 0.0), g("I13", 0.0)],
+                     [g("I12", 0.0), g("I22"), g("I23", 0.0)],
+                     [g("I13", 0.0), g("I23", 0.0), g("I33")]], dtype=float)
