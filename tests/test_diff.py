@@ -76,7 +76,8 @@ def test_missing_latexdiff_is_named(tmp_path, monkeypatch):
         diff.latexdiff_pdf(copy_of_generated(tmp_path), GENERATED, tmp_path / "out")
 
 
-def test_git_revision_and_latexdiff_pdf(tmp_path, capsys):
+def older_tree_with_one_formula_changed(tmp_path):
+    """A copy of generated/ whose F_1 differs (needs latexdiff and pdflatex: skipped without, failed under CI)."""
     if shutil.which("latexdiff") is None or shutil.which("pdflatex") is None:
         if os.environ.get("CI"):
             pytest.fail("latexdiff/pdflatex not found under CI: .ci/run must install latexdiff and texlive-latex-base")
@@ -85,6 +86,11 @@ def test_git_revision_and_latexdiff_pdf(tmp_path, capsys):
     body = (old / "formulas_body.tex").read_text(encoding="utf-8")
     (old / "formulas_body.tex").write_text(body.replace(r"\frac{(I_{11}I_{22})^2}{D}", r"\frac{1}{D}", 1),
                                            encoding="utf-8")
+    return old
+
+
+def test_git_revision_and_latexdiff_pdf(tmp_path, capsys):
+    old = older_tree_with_one_formula_changed(tmp_path)
     pdf = diff.diff_trees(str(old), GENERATED, ROOT, tmp_path / "diff", echo=print)
     assert pdf.is_file() and pdf.stat().st_size > 10_000
     marked = (tmp_path / "diff" / "suslov_formulas-diff.tex").read_text(encoding="utf-8")
@@ -119,14 +125,7 @@ def test_a_table_whose_certificate_keys_alone_changed_is_unchanged(tmp_path):
 
 
 def test_latexdiff_marks_a_changed_formula_and_a_changed_certificate(tmp_path):
-    if shutil.which("latexdiff") is None or shutil.which("pdflatex") is None:
-        if os.environ.get("CI"):
-            pytest.fail("latexdiff/pdflatex not found under CI: .ci/run must install latexdiff and texlive-latex-base")
-        pytest.skip("latexdiff or pdflatex not installed (apt-get install latexdiff texlive-latex-base)")
-    old = copy_of_generated(tmp_path)
-    body = (old / "formulas_body.tex").read_text(encoding="utf-8")
-    (old / "formulas_body.tex").write_text(body.replace(r"\frac{(I_{11}I_{22})^2}{D}", r"\frac{1}{D}", 1),
-                                           encoding="utf-8")
+    old = older_tree_with_one_formula_changed(tmp_path)
     table = (old / "certificates_table.tex").read_text(encoding="utf-8")
     key = next(line for line in table.splitlines() if r"\certkey{" in line).split(r"\certkey{")[1].split("}")[0]
     (old / "certificates_table.tex").write_text(table.replace(r"\certkey{" + key + "}", r"\certkey{old:999}", 1),
