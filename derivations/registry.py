@@ -10,6 +10,7 @@ from types import ModuleType
 
 from derivations.sections import (
     first_integrals,
+    fuchsian,
     galois,
     hypergeometric,
     kovalevskaya,
@@ -21,7 +22,8 @@ from derivations.sections import (
 )
 
 DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, kovalevskaya, residue, hypergeometric,
-                                                   meromorphic, first_integrals, scattering, galois)}
+                                                   meromorphic, first_integrals, scattering, galois,
+                                                   fuchsian)}
 
 
 def requirements(name: str) -> tuple[str, ...]:

@@ -25,7 +25,7 @@ from suslov.kernel.enclosure import (
 from suslov.kernel.validate import PREC_RANGE, precision
 from suslov.loader import gf
 
-__all__ = ["AngleEnclosure", "EnclosureTooCostly", "omega_coefficients", "scattering_angle_enclosure"]
+__all__ = ["AngleEnclosure", "EnclosureTooCostly", "monodromy", "omega_coefficients", "scattering_angle_enclosure"]
 
 
 class _Probe:
@@ -87,3 +87,53 @@ def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, digits: int 
     finally:
         ctx.prec = saved
     return ss_angle_enclosure(u, v, digits=digits, prec=prec, max_seconds=max_seconds, progress=progress)
+
+
+def monodromy(I11, I22, I13, I23, digits: int = 30, branch: int = 1) -> "Monodromy":
+    """Certified monodromy and differential Galois group of the Poisson equations of any body.
+
+    The paper's open problem (Conclusion): for omega(t) = u tanh t + v sech t (eq:o12, this body's
+    coefficients from :func:`omega_coefficients`), the Poisson equations eq:whole in x = e^t are a
+    Fuchsian system with singular points 0, +i, -i, oo.  Returns a
+    :class:`suslov.kernel.monodromy.Monodromy`: ``matrices`` (``"x=0"``, ``"x=i"``, ``"x=-i"``,
+    ``"x=oo"`` -> python-flint ``acb_mat`` with radii about 10^-digits, at the base x = 1/2),
+    ``exponents`` (per singular point), ``verdict`` (``"SO(3,C)"``, ``"reducible"``, ``"unknown"``;
+    ``"imprimitive"`` and ``"finite"`` are never concluded from balls), ``liouvillian`` (True, False or
+    None) and ``certificates`` (claim, pass/fail/unknown, detail).  The theorems each step uses are in
+    :mod:`suslov.kernel.monodromy`.  ``digits`` in [10, 200].
+
+    >>> m = monodromy("5/4", 1, "3/10", "-1/2", digits=20)
+    >>> m.verdict, m.liouvillian
+    ('SO(3,C)', False)
+    """
+    from suslov.kernel.monodromy import compute_monodromy, decide_group
+
+    digits = precision("digits", digits, (10, 200))
+    saved = ctx.prec
+    ctx.prec = int(3.33 * digits) + 64
+    try:
+        u, v = omega_coefficients(I11, I22, I13, I23, branch)
+    finally:
+        ctx.prec = saved
+    result = compute_monodromy(u, v, digits)
+    return decide_group(result, exact_trivial_at_poles=_odd_integer_p(I11, I22, I13, I23))
+
+
+def _odd_integer_p(I11, I22, I13, I23) -> bool:
+    """Exactly (in rationals): I13 = 0 and p^2 = I22 (I11 - I22)/I23^2 is the square of an odd integer --
+    the case whose local monodromy at the poles is trivial (certified: derivations/sections/residue.py).
+    Floats are taken as the binary numbers they are; False when an entry is not exactly rational."""
+    from fractions import Fraction
+    from math import isqrt
+
+    try:
+        a, b, c, e = (Fraction(str(x)) if isinstance(x, str) else Fraction(x) for x in (I11, I22, I13, I23))
+    except (TypeError, ValueError):
+        return False
+    if c != 0 or e == 0 or not a > b:
+        return False
+    p2 = b * (a - b) / (e * e)
+    if p2.denominator != 1:
+        return False
+    root = isqrt(p2.numerator)
+    return root * root == p2.numerator and root % 2 == 1

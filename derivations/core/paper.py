@@ -333,3 +333,10 @@ ANGLE_P = Printed("Theorem 5.2 (p)", r"d=\sqrt{\frac{I_{11}-I_{22}}{I_{22}}},\ "
 ANGLE_P2 = NECC1_P2
 SS_LIMIT_TEXT = Printed("ss (text)", r"\gamma(t)\to(\cos\Delta\psi,\ \sin\Delta\psi\cos at,\ \sin\Delta\psi\sin at)^T,"
                         r"\ t\to+\infty", "section 4, after eq. ss")
+
+
+CONCLUSION_EVEN = Printed(
+    "Conclusion",
+    r"I_{13}=0,\ p\ \text{even}:\ \text{all solutions meromorphic},\ \text{not Liouvillian}",
+    "Conclusion",
+)
