@@ -12,7 +12,6 @@ Two measurements, written to ``bench/results/monodromy.{json,md}``:
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import statistics
 import sys
@@ -39,7 +38,7 @@ def verdict_chunk(task) -> list:
         if Fraction(I13) == 0 and Fraction(I23) == 0:
             out.append("equilibrium")
             continue
-        out.append(monodromy("2", "1", I13, I23, digits=digits).verdict)
+        out.append(monodromy("2", "1", I13, I23, digits=digits, max_digits=4 * digits).verdict)
     return out
 
 

@@ -89,7 +89,7 @@ def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, digits: int 
     return ss_angle_enclosure(u, v, digits=digits, prec=prec, max_seconds=max_seconds, progress=progress)
 
 
-def monodromy(I11, I22, I13, I23, digits: int = 30, branch: int = 1) -> "Monodromy":
+def monodromy(I11, I22, I13, I23, digits: int = 30, branch: int = 1, max_digits: int | None = None):
     """Certified monodromy and differential Galois group of the Poisson equations of any body.
 
     The paper's open problem (Conclusion): for omega(t) = u tanh t + v sech t (eq:o12, this body's
@@ -100,7 +100,10 @@ def monodromy(I11, I22, I13, I23, digits: int = 30, branch: int = 1) -> "Monodro
     ``exponents`` (per singular point), ``verdict`` (``"SO(3,C)"``, ``"reducible"``, ``"unknown"``;
     ``"imprimitive"`` and ``"finite"`` are never concluded from balls), ``liouvillian`` (True, False or
     None) and ``certificates`` (claim, pass/fail/unknown, detail).  The theorems each step uses are in
-    :mod:`suslov.kernel.monodromy`.  ``digits`` in [10, 200].
+    :mod:`suslov.kernel.monodromy`.  ``digits`` in [10, 200].  When the balls are too wide to decide
+    (bodies near I13 = I23 = 0, where ``|omega|`` is large and the entries grow like ``exp(2 pi |u|)``), the
+    computation is repeated at twice the digits up to ``max_digits`` (default ``min(4 digits, 200)``);
+    ``result.digits`` says which precision decided.
 
     >>> m = monodromy("5/4", 1, "3/10", "-1/2", digits=20)
     >>> m.verdict, m.liouvillian
@@ -109,14 +112,25 @@ def monodromy(I11, I22, I13, I23, digits: int = 30, branch: int = 1) -> "Monodro
     from suslov.kernel.monodromy import compute_monodromy, decide_group
 
     digits = precision("digits", digits, (10, 200))
+    ceiling = min(4 * digits, 200) if max_digits is None else precision("max_digits", max_digits, (digits, 200))
     saved = ctx.prec
     ctx.prec = int(3.33 * digits) + 64
     try:
         u, v = omega_coefficients(I11, I22, I13, I23, branch)
     finally:
         ctx.prec = saved
-    result = compute_monodromy(u, v, digits)
-    return decide_group(result, exact_trivial_at_poles=_odd_integer_p(I11, I22, I13, I23))
+    exact = _odd_integer_p(I11, I22, I13, I23)
+    while True:
+        result = decide_group(compute_monodromy(u, v, digits), exact_trivial_at_poles=exact)
+        if result.verdict != "unknown" or digits >= ceiling:
+            return result
+        digits = min(2 * digits, ceiling)
+        saved = ctx.prec
+        ctx.prec = int(3.33 * digits) + 64
+        try:   # u, v again at the higher precision: their radii bound the monodromy's
+            u, v = omega_coefficients(I11, I22, I13, I23, branch)
+        finally:
+            ctx.prec = saved
 
 
 def _odd_integer_p(I11, I22, I13, I23) -> bool:

@@ -109,9 +109,11 @@ figures = ["histogram"]
 
 
 def test_results_identical_across_executors(tmp_path):
-    """One process, two local processes and a Dask LocalCluster on loopback: byte-identical tables."""
+    """One process, two local processes and a Dask LocalCluster on loopback: byte-identical tables (the
+    angle and the certified Galois verdict, issue 23)."""
     distributed = pytest.importorskip("distributed")
-    scene = write(tmp_path, GRID.replace('figures = ["map"]', ""))
+    scene = write(tmp_path, GRID.replace('figures = ["map"]', "").replace('compute = ["scattering_angle"]',
+                                                                          'compute = ["scattering_angle", "galois_group"]'))
     assert main(["simulate", str(scene), "--out", str(tmp_path / "one"), "--quiet", "--workers", "1"]) == 0
     assert main(["simulate", str(scene), "--out", str(tmp_path / "two"), "--quiet", "--workers", "2"]) == 0
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, host="127.0.0.1", dashboard_address=None,
@@ -288,3 +290,21 @@ def test_readme_quotes_the_general_body_study_as_it_is(tmp_path):
     assert f"ranges from {committed['angle_min']:.2f} to pi" in readme
     quoted = float(re.search(r"largest spread ([0-9.e+-]+) rad over the (\d+) bodies", readme).group(1))
     assert quoted == pytest.approx(committed["energy_spread_max"], rel=0.05)
+
+
+def test_galois_group_effect_maps_the_verdict(tmp_path):
+    """The galois_group effect: one row per body, 1 (SO(3,C)) for a general body, 0 (reducible) for odd p with
+    I13 = 0, the method naming the verdict; the map figure draws it (issue 23)."""
+    text = ('name = "g"\n[sweep]\nI11 = 2.0\nI22 = 1.0\nI33 = 1.5\nI13 = [0.0, 0.3]\nI23 = [-0.2, 1.0]\n'
+            '[effects]\ncompute = ["galois_group"]\nfigures = ["map"]\n')
+    table, _, _, _ = sweep.run_sweep(load_scene(write(tmp_path, text)), tmp_path / "out", workers=1)
+    rows = dict(zip(zip(table["I13"], table["I23"]), zip(table["galois_group"], table["galois_group_method"])))
+    assert rows[(0.3, -0.2)][0] == 1.0 and rows[(0.3, -0.2)][1].startswith("SO(3,C)")
+    assert (tmp_path / "out" / "map.png").is_file()
+    from suslov.validated import monodromy
+    # I13 = 0, I23 = -0.2 in the paper's frame after det I = 1 normalisation: whatever p is, the row agrees
+    # with the API on the same tensor
+    body = sweep.point_body({"I11": 2.0, "I22": 1.0, "I33": 1.5, "I12": 0.0, "I13": 0.0, "I23": -0.2}, "tensor")
+    expected = {"SO(3,C)": 1.0, "reducible": 0.0}.get(monodromy(*body.entries, digits=20).verdict)
+    got = rows[(0.0, -0.2)][0]
+    assert (expected is None and got != got) or got == expected

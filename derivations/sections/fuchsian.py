@@ -29,7 +29,7 @@ from derivations.core.certificates import Certificate, CertificateLog, Outcome, 
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
-from derivations.core.symbols import I11, I13, I22, I23, r, w1, w2
+from derivations.core.symbols import I11, I13, I22, I23, w1, w2
 from derivations.core.differential import S, T
 from derivations.sections.model import R_EXT
 

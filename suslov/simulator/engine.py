@@ -124,6 +124,19 @@ def step_angle_enclosure(run: Run):
         "entries_paper_frame": [float(x) for x in run.plan.body.entries]}
 
 
+def step_galois_monodromy(run: Run):
+    from suslov.validated import monodromy  # python-flint balls only when asked for
+
+    result = monodromy(*run.plan.body.entries, digits=GALOIS_DIGITS)
+    run.results["galois_group"] = {"verdict": result.verdict, "liouvillian": result.liouvillian,
+                                   "certificates": [{"claim": c, "outcome": o, "detail": d}
+                                                    for c, o, d in result.certificates],
+                                   "largest_radius": result.radius}
+
+
+GALOIS_DIGITS = 20
+
+
 def step_angle_integrate(run: Run):
     angle, error, sol = numeric_angle(run.plan.scene, run.plan.body)
     run.results["scattering_angle"] = {"radians": angle, "error_estimate": error,
@@ -172,6 +185,7 @@ STEPS = {
     "angle_closed_form": step_angle_closed_form,
     "angle_integrate": step_angle_integrate,
     "angle_enclosure": step_angle_enclosure,
+    "galois_monodromy": step_galois_monodromy,
     "sleigh_velocities": step_sleigh_velocities,
     "sleigh_path": step_sleigh_path,
 }

@@ -103,9 +103,11 @@ PROVIDERS = (
              + " on ss from the series start to lam t = 40"),
     Provider("scattering_angle_enclosure", "angle_enclosure", (), "any Suslov body", _suslov,
              lambda s, b: "validated integration in ball arithmetic (suslov.validated), 1e-20"),
+    Provider("galois_group", "galois_monodromy", (), "any Suslov body", _suslov,
+             lambda s, b: "monodromy matrices as balls along complex loops, group decided (suslov.validated.monodromy)"),
 )
 ORDER = ("omega", "contact_point", "gamma", "orientation", "integral_drift", "scattering_angle",
-         "scattering_angle_enclosure")
+         "scattering_angle_enclosure", "galois_group")
 
 
 @dataclass

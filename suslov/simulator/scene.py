@@ -21,7 +21,8 @@ A scene is declarative: it names the effects wanted, never the method.  Schema::
     speed = 1.0                            # sleigh only: limit speed of the blade
 
     [effects]
-    compute = ["omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_enclosure"]
+    compute = ["omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_enclosure",
+               "galois_group"]             # galois_group: the certified monodromy verdict (suslov.validated.monodromy)
     figures = ["omega_plane", "gamma_components", "basis_sphere"]
     figures_format = ["png", "pdf"]        # optional, default ["png"]; also "svg"
 
@@ -53,7 +54,7 @@ from suslov.simulator.scene_errors import SceneError
 from suslov.simulator.sweep_spec import parse_sweep
 
 EFFECTS = ("omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_enclosure",
-           "contact_point")
+           "contact_point", "galois_group")
 FIGURES = {  # figure -> effect it draws
     "omega_plane": "omega",
     "gamma_components": "gamma",
@@ -62,7 +63,7 @@ FIGURES = {  # figure -> effect it draws
     "sleigh_path": "contact_point",
 }
 SLEIGH_EFFECTS = ("omega", "contact_point")
-SWEEP_EFFECTS = ("scattering_angle", "scattering_angle_enclosure")
+SWEEP_EFFECTS = ("scattering_angle", "scattering_angle_enclosure", "galois_group")
 SWEEP_FIGURES = ("map", "histogram")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "LSODA")
 METHODS = ("taylor", *(f"scipy:{m}" for m in SCIPY_METHODS))

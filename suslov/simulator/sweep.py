@@ -42,10 +42,13 @@ from suslov.simulator.sweep_spec import tensor_of
 
 SAMPLE_FOR_EXPLAIN = 20_000
 # seconds per point and step, measured by bench/bench_simulator.py on the 2-core machine (rounded up)
-COST = {"angle_closed_form": 3e-5, "angle_integrate:taylor": 5e-4, "angle_integrate:scipy": 2.0,
+COST = {"galois_monodromy": 0.3, "angle_closed_form": 3e-5, "angle_integrate:taylor": 5e-4, "angle_integrate:scipy": 2.0,
         "angle_enclosure": 0.3, "refused": 2e-5}
 WORKER_START = 1.0   # seconds to start a worker process (imports 0.4 s, Taylor compilation 0.5 s)
 ENCLOSURE_DIGITS = 15
+GALOIS_DIGITS = 20
+# the galois_group column: 0 solvable in Liouvillian functions (reducible), 1 not (SO(3,C)), NaN not decided
+GALOIS_CODES = {"reducible": 0.0, "SO(3,C)": 1.0, "unknown": math.nan, "imprimitive": 0.0, "finite": 0.0}
 
 
 @dataclass
@@ -154,6 +157,11 @@ def evaluate_point(point: dict, options: dict) -> dict:
         if "scattering_angle" in options["effects"]:
             angle, error, how = _angle(body, steps, options["method"], point)
             row |= {"scattering_angle": angle, "scattering_angle_error": error, "scattering_angle_method": how}
+        if "galois_monodromy" in steps:
+            from suslov.validated import monodromy
+            result = monodromy(*body.entries, digits=GALOIS_DIGITS)
+            row |= {"galois_group": GALOIS_CODES[result.verdict], "galois_group_error": 0.0,
+                    "galois_group_method": f"{result.verdict} (monodromy balls, {GALOIS_DIGITS} digits)"}
         if "angle_enclosure" in steps:
             from suslov.validated import scattering_angle_enclosure
             ball = scattering_angle_enclosure(*body.entries, digits=ENCLOSURE_DIGITS).angle

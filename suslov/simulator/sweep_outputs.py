@@ -16,9 +16,10 @@ import numpy as np
 
 from suslov.simulator.outputs import REPORT, staged
 
-SCALARS = ("scattering_angle", "scattering_angle_enclosure", "energy_spread")
+SCALARS = ("scattering_angle", "scattering_angle_enclosure", "galois_group", "energy_spread")
 LABELS = {"scattering_angle": r"$\Delta\psi$ (rad)", "scattering_angle_enclosure": r"$\Delta\psi$ ball midpoint (rad)",
-          "energy_spread": r"energy spread $\Delta\psi_{\max} - \Delta\psi_{\min}$ (rad)"}
+          "energy_spread": r"energy spread $\Delta\psi_{\max} - \Delta\psi_{\min}$ (rad)",
+          "galois_group": "Galois group (0: reducible, Liouvillian; 1: SO(3,C), not; white: unknown)"}
 SPREAD_FLOOR = 1e-17   # a spread of exactly 0 (equal in every bit) is drawn at this value on the log scale
 AXIS_LABELS = {"I11": "$I_{11}$", "I22": "$I_{22}$", "I33": "$I_{33}$", "I12": "$I_{12}$", "I13": "$I_{13}$",
                "I23": "$I_{23}$", "p": "$p$", "d": "$d$"}
@@ -98,8 +99,14 @@ def draw_map(scene, table: dict, staging, formats) -> list[str]:
             finite = grid[np.isfinite(grid)]
             norm = LogNorm(finite.min(), max(finite.max(), 10 * SPREAD_FLOOR)) if finite.size else None
             label += f"; 0 drawn at {SPREAD_FLOOR:g}"
-        mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(grid), shading="nearest", norm=norm, cmap="viridis")
-        fig.colorbar(mesh, ax=ax, label=label)
+        if name == "galois_group":   # three colours: solvable, not solvable, unknown (masked: white)
+            from matplotlib.colors import BoundaryNorm, ListedColormap
+            mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(grid), shading="nearest",
+                                 cmap=ListedColormap(["#4c9be8", "#d1495b"]), norm=BoundaryNorm([-0.5, 0.5, 1.5], 2))
+            fig.colorbar(mesh, ax=ax, ticks=[0, 1], label="0 reducible (Liouvillian), 1 SO(3,C); white: unknown")
+        else:
+            mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(grid), shading="nearest", norm=norm, cmap="viridis")
+            fig.colorbar(mesh, ax=ax, label=label)
         ax.set_xlabel(AXIS_LABELS.get(xname, xname))
         ax.set_ylabel(AXIS_LABELS.get(yname, yname))
         title = LABELS[name].rsplit(" (", 1)[0]
