@@ -103,15 +103,25 @@ class _Progress:
     def __init__(self, total: int, report: Callable[[str], None] | None):
         self.total, self.report, self.done = total, report, 0
         self.start = self.last = time.perf_counter()
+        self.first = None   # when the first chunk finished: the time before it is mostly worker start-up
+
+    def left(self, now: float) -> float | None:
+        """Seconds left from the completion rate *after* the first chunk (the start-up of the workers, about
+        2 s, made a 2 s study announce 35 s when it was spread over the chunks); None before two chunks."""
+        if self.first is None or self.done < 2:
+            return None
+        return (now - self.first) / (self.done - 1) * (self.total - self.done)
 
     def tick(self, computed: bool = True):
         self.done += 1
         now = time.perf_counter()
+        if self.first is None:
+            self.first = now
         if self.report and (now - self.last >= 1.0 or self.done == self.total):
             self.last = now
-            rate = (now - self.start) / self.done
-            left = rate * (self.total - self.done)
-            self.report(f"chunks {self.done}/{self.total}, {now - self.start:.1f} s, about {left:.0f} s left")
+            left = self.left(now)
+            estimate = "estimating" if left is None else f"about {left:.0f} s left"
+            self.report(f"chunks {self.done}/{self.total}, {now - self.start:.1f} s, {estimate}")
 
 
 def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkStore | None = None,

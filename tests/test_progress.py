@@ -32,3 +32,17 @@ def test_pipe_gets_one_line_per_derivation():
     assert [line.split(":")[0] for line in lines] == ["[1/4] model", "[2/4] special_case", "[3/4] kovalevskaya",
                                                       "[4/4] residue"]
     assert "\r" not in stream.getvalue() and "left" not in stream.getvalue()
+
+
+def test_sweep_estimate_excludes_the_workers_start_up(monkeypatch):
+    """A 16-chunk sweep whose first chunk finished after 2 s of worker start-up and the rest every 0.05 s:
+    the time left after the third chunk is 13 x 0.05 s; the old estimate (elapsed / done) said 9 s."""
+    from suslov import executor
+
+    clock = iter([0.0, 2.0, 2.05, 2.10])
+    monkeypatch.setattr(executor.time, "perf_counter", lambda: next(clock))
+    progress = executor._Progress(16, None)
+    for _ in range(3):
+        progress.tick()
+    true_left = 13 * 0.05
+    assert true_left / 2 <= progress.left(2.10) <= 2 * true_left
