@@ -8,10 +8,13 @@ Two measurements, written to ``bench/results/monodromy.{json,md}``:
    on 2 cores), with the count of verdicts that are not certified away from I13 = 0 and I23 = 0.
 
     python bench/bench_monodromy.py [--size 41] [--digits 20] [--workers N]
+    python bench/bench_monodromy.py --dask-check     # the slice again on a Dask LocalCluster (2 workers):
+                                                     # the verdicts must be byte-identical to the committed ones
 """
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import statistics
 import sys
@@ -42,6 +45,29 @@ def verdict_chunk(task) -> list:
     return out
 
 
+def slice_tasks(n: int, digits: int):
+    values = [str(Fraction(-6, 10) + Fraction(12, 10) * Fraction(k, n - 1)) for k in range(n)]
+    bodies = [(a, b) for a in values for b in values]
+    return values, bodies, [(digits, bodies[i:i + n]) for i in range(0, len(bodies), n)]
+
+
+def dask_check(args) -> int:
+    """The committed slice's verdicts recomputed on a Dask LocalCluster: byte-identical JSON or exit 1."""
+    import distributed
+
+    committed = json.loads((ROOT / "bench" / "results" / "monodromy.json").read_text())["slice"]
+    _, _, chunks = slice_tasks(committed["size"], committed["digits"])
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None) as cluster:
+        start = time.perf_counter()
+        results, _ = executor.run_chunks(verdict_chunk, chunks, [f"m{i}" for i in range(len(chunks))],
+                                         scheduler=cluster.scheduler_address)
+        seconds = time.perf_counter() - start
+    verdicts = [v for chunk in results for v in chunk]
+    same = json.dumps(verdicts) == json.dumps(committed["verdicts"])
+    print(f"Dask LocalCluster (2 workers): {seconds:.0f} s; verdicts byte-identical to the committed local run: {same}")
+    return 0 if same else 1
+
+
 def one_body(repeat: int = 5) -> dict:
     times, radius = [], None
     for _ in range(repeat):
@@ -57,13 +83,15 @@ def main(argv=None) -> int:
     ap.add_argument("--size", type=int, default=41)
     ap.add_argument("--digits", type=int, default=20)
     ap.add_argument("--workers", type=int, default=None)
+    ap.add_argument("--dask-check", action="store_true",
+                    help="run the slice through a Dask LocalCluster and compare with bench/results/monodromy.json")
     args = ap.parse_args(argv)
+    if args.dask_check:
+        return dask_check(args)
     single = one_body()
     print(f"one body to radius {single['radius']:.1e}: {single['median_seconds']:.2f} s (median of 5)", flush=True)
     n = args.size
-    values = [str(Fraction(-6, 10) + Fraction(12, 10) * Fraction(k, n - 1)) for k in range(n)]
-    bodies = [(a, b) for a in values for b in values]
-    chunks = [(args.digits, bodies[i:i + n]) for i in range(0, len(bodies), n)]
+    values, bodies, chunks = slice_tasks(n, args.digits)
     start = time.perf_counter()
     results, _ = executor.run_chunks(verdict_chunk, chunks, [f"m{i}" for i in range(len(chunks))],
                                      workers=args.workers,
