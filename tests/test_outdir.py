@@ -222,6 +222,8 @@ def test_workers_die_with_their_parent(tmp_path):
         time.sleep(0.2)
         alive = {pid for pid in alive if Path(f"/proc/{pid}").exists()
                  and "Z" not in Path(f"/proc/{pid}/stat").read_text().split()[2]}
+    for pid in alive:   # a failing run (the mutation suite's seeded fault) must not leave them behind either
+        os.kill(pid, signal.SIGKILL)
     assert not alive, f"workers {alive} outlived their parent"
 
 
