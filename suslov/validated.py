@@ -12,6 +12,8 @@ checked by the build (``scattering`` certificates, method "ball enclosure").
 """
 from __future__ import annotations
 
+import math
+
 from flint import arb, ctx
 
 from suslov.kernel.enclosure import (
@@ -100,54 +102,85 @@ def monodromy(I11, I22, I13, I23, digits: int = 30, branch: int = 1, max_digits:
     ``exponents`` (per singular point), ``verdict`` (``"SO(3,C)"``, ``"reducible"``, ``"unknown"``;
     ``"imprimitive"`` and ``"finite"`` are never concluded from balls), ``liouvillian`` (True, False or
     None) and ``certificates`` (claim, pass/fail/unknown, detail).  The theorems each step uses are in
-    :mod:`suslov.kernel.monodromy`.  ``digits`` in [10, 200].  When the balls are too wide to decide
-    (bodies near I13 = I23 = 0, where ``|omega|`` is large and the entries grow like ``exp(2 pi |u|)``), the
-    computation is repeated at twice the digits up to ``max_digits`` (default ``min(4 digits, 200)``);
-    ``result.digits`` says which precision decided.
+    :mod:`suslov.kernel.monodromy`.  ``digits`` in [10, 200]: the radius asked of every entry.  Near
+    I13 = I23 = 0 ``|omega|`` is large, the entries grow like ``exp(2 pi |u|)`` and the Taylor sums
+    cancel; the loops then run with ``result.guard`` extra digits (estimated from the body, increased
+    once if the radius still comes out wider than asked), and not at all beyond
+    ``suslov.kernel.monodromy.MAX_WORKING_DIGITS`` (verdict "unknown", saying how many digits it would
+    take).  When a test is still undecided the computation is repeated at twice the digits up to
+    ``max_digits`` (default ``min(4 digits, 200)``); ``result.digits`` says which precision decided.
+    "reducible" (odd p) needs the exact no-logarithm certificate of that p: I13 = 0, or I23 = 0 by
+    eq:lina, and p at most the loaded formulas' ``PMAX`` (beyond it: "unknown").
 
     >>> m = monodromy("5/4", 1, "3/10", "-1/2", digits=20)
     >>> m.verdict, m.liouvillian
     ('SO(3,C)', False)
     """
+    from suslov.kernel.fuchsian_flow import guard_digits, residues
     from suslov.kernel.monodromy import compute_monodromy, decide_group
 
     digits = precision("digits", digits, (10, 200))
     ceiling = min(4 * digits, 200) if max_digits is None else precision("max_digits", max_digits, (digits, 200))
-    saved = ctx.prec
-    ctx.prec = int(3.33 * digits) + 64
-    try:
-        u, v = omega_coefficients(I11, I22, I13, I23, branch)
-    finally:
-        ctx.prec = saved
-    exact = _odd_integer_p(I11, I22, I13, I23)
-    while True:
-        result = decide_group(compute_monodromy(u, v, digits), exact_trivial_at_poles=exact)
-        if result.verdict != "unknown" or digits >= ceiling:
-            return result
-        digits = min(2 * digits, ceiling)
+
+    def coefficients(working_digits: int):
         saved = ctx.prec
-        ctx.prec = int(3.33 * digits) + 64
-        try:   # u, v again at the higher precision: their radii bound the monodromy's
-            u, v = omega_coefficients(I11, I22, I13, I23, branch)
+        ctx.prec = int(3.33 * working_digits) + 64
+        try:
+            return omega_coefficients(I11, I22, I13, I23, branch)
         finally:
             ctx.prec = saved
 
+    u, v = coefficients(digits)
+    guard = guard_digits(residues(u, v))
+    exact, detail = _exact_trivial_at_poles(I11, I22, I13, I23)
+    while True:
+        # u, v at the working precision: their radii bound the monodromy's
+        u, v = coefficients(digits + guard)
+        mono = compute_monodromy(u, v, digits, guard)
+        if mono.matrices and mono.radius > 10.0 ** (1 - digits):   # the guard was too small: once more, measured
+            guard += math.ceil(math.log10(mono.radius)) + digits + 5
+            u, v = coefficients(digits + guard)
+            mono = compute_monodromy(u, v, digits, guard)
+        result = decide_group(mono, exact_trivial_at_poles=exact, exact_detail=detail)
+        if result.verdict != "unknown" or digits >= ceiling or not mono.matrices:
+            return result
+        digits = min(2 * digits, ceiling)
 
-def _odd_integer_p(I11, I22, I13, I23) -> bool:
-    """Exactly (in rationals): I13 = 0 and p^2 = I22 (I11 - I22)/I23^2 is the square of an odd integer --
-    the case whose local monodromy at the poles is trivial (certified: derivations/sections/residue.py).
-    Floats are taken as the binary numbers they are; False when an entry is not exactly rational."""
+
+def _exact_trivial_at_poles(I11, I22, I13, I23) -> tuple:
+    """(True, certificate) when I13 = 0 and p is an odd integer within the range the active formulas
+    certified (``PMAX``: the exact Frobenius recursion of derivations/sections/residue.py finds no
+    logarithm at t0 = i pi/2 for every odd p up to it); (False, reason) otherwise.  Beyond PMAX the
+    paper's claim is not certified here, and the balls alone cannot prove M(+-i) = I."""
+    p = _odd_integer_p(I11, I22, I13, I23)
+    if not p:
+        return False, ""
+    pmax = int(gf.PMAX)
+    if p > pmax:
+        return False, (f"odd p = {p} beyond the certified range p <= {pmax} of the loaded formulas "
+                       "(suslov.load_formulas(pmax=...) certifies more)")
+    return True, f"p = {p} odd, no logarithms at t0 = i pi/2 (certified by the build, residue, p <= {pmax})"
+
+
+def _odd_integer_p(I11, I22, I13, I23) -> int:
+    """Exactly (in rationals): p when I13 = 0 and p^2 = I22 (I11 - I22)/I23^2 is the square of an odd
+    integer p -- the case whose local monodromy at the poles is trivial (certified per p:
+    derivations/sections/residue.py) -- or, by the symmetry eq:lina (I11 <-> I22, I13 <-> I23, certified
+    by derivations/sections/kovalevskaya.py), when I23 = 0 and p^2 = I11 (I22 - I11)/I13^2 is; else 0.
+    Floats are taken as the binary numbers they are; 0 when an entry is not exactly rational."""
     from fractions import Fraction
     from math import isqrt
 
     try:
         a, b, c, e = (Fraction(str(x)) if isinstance(x, str) else Fraction(x) for x in (I11, I22, I13, I23))
     except (TypeError, ValueError):
-        return False
+        return 0
+    if e == 0 and c != 0:
+        a, b, c, e = b, a, e, c          # eq:lina
     if c != 0 or e == 0 or not a > b:
-        return False
+        return 0
     p2 = b * (a - b) / (e * e)
     if p2.denominator != 1:
-        return False
+        return 0
     root = isqrt(p2.numerator)
-    return root * root == p2.numerator and root % 2 == 1
+    return root if root * root == p2.numerator and root % 2 == 1 else 0

@@ -7,7 +7,10 @@ Expected values from independent routes:
   evaluated in mpmath from u, v, no integration;
 * the exact results for I13 = 0: trivial local monodromy at the poles for odd p, unipotent (trace 3,
   not the identity: logarithms) for even p, eigenvalues 1, exp(+-2 pi i p) for non-integer p;
-* a SciPy DOP853 integration in the t-plane around t0 = i pi/2 (the pole x = i), compared by trace.
+* a SciPy DOP853 integration in the t-plane around t0 = i pi/2 (the pole x = i), compared by trace
+  and, from the same base t = -ln 2 (x = 1/2) along a homotopic loop, entry by entry;
+* one Taylor step against the matrix exponential (a single pole: the transfer is exp(C(w) log(x/c))),
+  at 300 digits.
 """
 import math
 
@@ -107,3 +110,108 @@ def test_too_low_precision_is_unknown_never_a_wrong_verdict():
 def test_bad_input_is_named(args, match):
     with pytest.raises(ValueError, match=match):
         monodromy(*args)
+
+
+def test_the_whole_loop_matrix_agrees_with_scipy_from_the_same_base():
+    """M(x=i) entry by entry: the lasso's t-image (x = e^t stays in the first quadrant) is homotopic to a
+    segment from t = -ln 2 to i pi/2 + 0.6, the circle |t - i pi/2| = 0.6, and back."""
+    from scipy.integrate import solve_ivp
+
+    body = ("5/4", "1", "3/10", "-1/2")
+    u, v = (np.array([float(a) for a in vec]) for vec in uv(body))
+
+    def matrix(t):   # column form of gamma' = gamma C(omega): (gamma^T)' = C(omega)^T gamma^T
+        w = u * np.tanh(t) + v / np.cosh(t)
+        return np.array([[0, 0, w[1]], [0, 0, -w[0]], [-w[1], w[0], 0]], dtype=complex).T
+
+    def segment(a, b):
+        def rhs(s, y):
+            return (matrix(a + s * (b - a)) @ y.reshape(3, 3) * (b - a)).ravel()
+        sol = solve_ivp(rhs, (0, 1), np.eye(3, dtype=complex).ravel(), method="DOP853", rtol=1e-12, atol=1e-12)
+        return sol.y[:, -1].reshape(3, 3)
+
+    base, start = -math.log(2), 1j * math.pi / 2 + 0.6
+    column = segment(start, base) @ circle_monodromy(matrix, 1j * math.pi / 2, 0.6, 3) @ segment(base, start)
+    M = monodromy(*body, digits=20).matrices["x=i"]
+    for r in range(3):
+        for c in range(3):
+            assert contains(M[r, c], column.T[r, c], 1e-8)
+
+
+def test_one_taylor_step_against_the_matrix_exponential_at_300_digits():
+    """With one simple pole (residue C(w) at 0) the transfer from c to c + h is exp(log(1 + h/c) C(w)):
+    the step's ball, truncation bound included, contains it (log10 eps = -300: no float underflow)."""
+    from flint import acb, ctx
+
+    from suslov.kernel.fuchsian_flow import cross_matrix, transfer
+
+    saved = ctx.prec
+    ctx.prec = 1100
+    try:
+        R = [cross_matrix([acb("0.3"), acb("-1.7"), acb("0.4", "0.2")]), acb_mat(3, 3), acb_mat(3, 3)]
+        c, h = acb("0.5"), acb("0.1", "0.2")     # rho(c) = 1/2 (x = 0), |h| < rho/2
+        step = transfer(R, c, h, -300)
+        exact = (R[0] * (1 + h / c).log()).exp()
+        radius = max(float(step[r, k].rad()) for r in range(3) for k in range(3))
+        assert radius < 1e-295
+        assert all((step[r, k] - exact[r, k]).contains(0) for r in range(3) for k in range(3))
+        assert not all((transfer(R, c, h * acb("1.001"), -300)[r, k] - exact[r, k]).contains(0)
+                       for r in range(3) for k in range(3))
+    finally:
+        ctx.prec = saved
+
+
+def test_the_relation_holds_in_its_one_order_and_the_others_are_excluded():
+    from suslov.kernel.monodromy import RELATION
+
+    m = monodromy("2", "1", "3/10", "-1/5", digits=30)
+    A, B, C = (m.matrices[name] for name in RELATION)
+    assert _contains(A * B * C, m.matrices["x=oo"]) and _excludes(B * A * C, m.matrices["x=oo"])
+    relation = next(c for c in m.certificates if c[0].startswith("the ordered product"))
+    assert relation[1] == "pass" and relation[2].startswith("5 of the 5")
+
+
+def test_near_the_equilibrium_the_radius_is_still_as_asked_and_the_verdict_decided():
+    """|u| = 19: entries about 1e51, and each Taylor sum cancels about 40 digits; the guard digits
+    keep the radius at 10^-digits (before them: relative precision 1e-17 at 40 digits, 'unknown')."""
+    m = monodromy("2", "1", "1/20", "-1/20", digits=20, max_digits=20)
+    assert m.guard > 60 and m.radius < 1e-20
+    assert m.verdict == "SO(3,C)"
+
+
+def test_too_close_to_the_equilibrium_is_unknown_with_the_digits_it_would_need():
+    m = monodromy("2", "1", "1/1000", "1/1000", digits=20)
+    assert m.verdict == "unknown" and m.liouvillian is None and m.matrices == {} and m.radius == math.inf
+    assert "working digits" in m.certificates[0][0] and m.certificates[0][1] == "unknown"
+
+
+def test_the_mirror_axis_i23_zero_through_eq_lina():
+    """eq:lina (I11 <-> I22, I13 <-> I23): p^2 = I11 (I22 - I11)/I13^2 on I23 = 0."""
+    odd = monodromy(1, 2, -1, 0, digits=20)                 # p = 1
+    assert odd.verdict == "reducible" and odd.liouvillian is True
+    assert _contains(odd.matrices["x=i"], I3) and _contains(odd.matrices["x=-i"], I3)
+    even = monodromy(1, 2, "-1/2", 0, digits=20)            # p = 2
+    assert even.verdict == "SO(3,C)" and (even.matrices["x=i"].trace() - 3).contains(0)
+
+
+def test_odd_p_beyond_the_certified_range_is_unknown_not_reducible(monkeypatch):
+    """The balls cannot prove M(+-i) = I; the exact no-logarithm certificate exists per p, up to the
+    loaded formulas' PMAX.  With a module certified only up to p = 1, p = 3 is undecided."""
+    import suslov.validated as validated
+
+    real = validated.gf
+
+    class Formulas:
+        PMAX = 1
+
+        def __getattr__(self, name):
+            return getattr(real, name)
+
+    monkeypatch.setattr(validated, "gf", Formulas())
+    m = monodromy(2, 1, 0, "-1/3", digits=20)
+    assert m.verdict == "unknown" and m.liouvillian is None
+    assert _contains(m.matrices["x=i"], I3)                # consistent with p = 3, but not a proof
+    assert any(outcome == "unknown" and "beyond the certified range p <= 1" in detail
+               for _, outcome, detail in m.certificates)
+    monkeypatch.undo()
+    assert monodromy(2, 1, 0, "-1/3", digits=20).verdict == "reducible"

@@ -35,7 +35,7 @@ from pathlib import Path
 DOCUMENT = "suslov_formulas.tex"
 DOCUMENTS = (DOCUMENT, "certificates.tex")   # the PDFs latexdiff marks
 REWORDED = 0.6                               # claim similarity above which an unmatched pair is one claim reworded
-TABLES = ("errata_table.tex", "per_p_table.tex", "monodromy_tables.tex", "galois_tables.tex", "basis_tables.tex",
+TABLES = ("errata_table.tex", "per_p_table.tex", "monodromy_tables.tex", "galois_tables.tex", "galois_group_table.tex", "basis_tables.tex",
           "integrals_table.tex")
 
 

@@ -56,6 +56,7 @@ OUTPUTS = (
     ("basis_tables.tex.j2", "basis_tables.tex", ("meromorphic",)),
     ("monodromy_tables.tex.j2", "monodromy_tables.tex", ("residue",)),
     ("galois_tables.tex.j2", "galois_tables.tex", ("galois",)),
+    ("galois_group_table.tex.j2", "galois_group_table.tex", ("fuchsian",)),
     ("certificate_costs.tex.j2", "certificate_costs.tex", ()),
 )
 
@@ -189,6 +190,7 @@ def context(build: Build) -> dict:
         "scattering": build.results["scattering"].exports if "scattering" in build.results else None,
         "galois_rows": build.results["galois"].exports["log_rows"] if "galois" in build.results else [],
         "prop_rows": build.results["galois"].exports["prop_rows"] if "galois" in build.results else [],
+        "fuchsian_rows": build.results["fuchsian"].exports["rows"] if "fuchsian" in build.results else [],
         "log_rows": build.results["residue"].exports["log_rows"] if "residue" in build.results else [],
         "body_rows": build.results["residue"].exports["body_rows"] if "residue" in build.results else [],
         "basis_rows": build.results["meromorphic"].exports["rows"] if "meromorphic" in build.results else [],

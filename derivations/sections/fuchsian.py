@@ -18,19 +18,31 @@ monodromy group".  Method:
    Kolchin) computes the monodromy matrices of representative bodies as python-flint balls and
    certifies the verdict; pass / fail / unknown as every ball certificate, never a wrong pass.
    The verdicts are checked against the exact local analysis (``derivations.sections.residue``):
-   trivial local monodromy exactly for odd p.
+   trivial local monodromy exactly for odd p (also on the mirror axis I23 = 0, through the certified
+   symmetry eq:lina).
+4. *The Conclusion's even-p sentence.*  "Not Liouvillian" is confirmed (Galois group SO(3, C));
+   "all solutions meromorphic" is refuted twice over: by the exact Frobenius recursion (logarithms,
+   ``residue``) and, independently, by the balls: for p = 2 the monodromy about x = i (a loop about
+   t0 = i pi/2, where x = e^t is biholomorphic) excludes the identity, so some solution is not
+   single-valued near t0.  Both go to the errata row.
 """
 from __future__ import annotations
 
 import sympy as sp
+from flint import acb_mat
 
 from derivations.core import paper
-from derivations.core.certificates import Certificate, CertificateLog, Outcome, stopwatch
+from derivations.core.certificates import (
+    Certificate,
+    CertificateLog,
+    Outcome,
+    stopwatch,
+)
+from derivations.core.differential import S, T
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
 from derivations.core.symbols import I11, I13, I22, I23, w1, w2
-from derivations.core.differential import S, T
 from derivations.sections.model import R_EXT
 
 NAME = "fuchsian"
@@ -45,7 +57,13 @@ DIGITS = 30
 # (label, I11, I22, I13, I23, what the case is): I13 = 0 with odd, even and non-integer p, and two general bodies
 BODIES = (("odd p = 1", "2", "1", "0", "-1"), ("odd p = 3", "2", "1", "0", "-1/3"), ("even p = 2", "2", "1", "0", "-1/2"),
           ("non-integer p = 5/2", "2", "1", "0", "-2/5"), ("general", "5/4", "1", "3/10", "-1/2"),
-          ("general", "2", "1", "3/10", "-1/5"))
+          ("general", "2", "1", "3/10", "-1/5"), ("odd p = 1, I23 = 0 (eq:lina)", "1", "2", "-1", "0"))
+
+
+def _math(value) -> str:
+    """A ball's midpoint to 4 digits as LaTeX mathematics (python-flint prints ``1.000j``)."""
+    text = value.str(4, radius=False).replace(" ", "")
+    return text.replace("j", "i")
 
 
 def cross(w) -> sp.Matrix:
@@ -82,13 +100,16 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
                    r"0,\ \pm i\sqrt{w\cdot w};\quad w\cdot w\big|_{x=\pm i}=u\cdot u-v\cdot v\mp 2i\,u\cdot v"
                    r"\overset{I_{13}=0}{=}-p^2", c_char, c_exp)
 
-    from suslov.validated import monodromy   # python-flint balls; the run-time code, exactly as users call it
+    from suslov.validated import (
+        monodromy,  # python-flint balls; the run-time code, exactly as users call it
+    )
 
     logarithms = {row["p"]: row["verdict"] for row in residue_result.exports["log_rows"]}
-    rows, verdict_certs = [], []
+    rows, verdict_certs, monos = [], [], {}
     for case, *body in BODIES:
         with stopwatch() as elapsed:
             mono = monodromy(*body, digits=DIGITS)
+        monos[case] = mono
         outcome = {"SO(3,C)": Outcome.PASS, "reducible": Outcome.PASS}.get(mono.verdict, Outcome.UNKNOWN)
         claim = (f"body (I11, I22, I13, I23) = ({', '.join(body)}), {case}: the differential Galois group of eq:whole is "
                  + ("SO(3,C) (= PSL(2,C)): no Liouvillian solutions" if mono.verdict == "SO(3,C)" else
@@ -99,22 +120,37 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
                                       outcome, elapsed[0], len(mono.certificates), detail[:400]))
         verdict_certs.append(cert)
         rows.append({"case": case, "body": body, "verdict": mono.verdict, "liouvillian": mono.liouvillian,
-                     "radius": mono.radius, "certificate": cert.key})
+                     "radius": mono.radius, "certificate": cert.key, "digits": mono.digits + mono.guard,
+                     "tests": "".join({"pass": "+", "fail": "-", "unknown": "?"}[outcome_]
+                                      for _, outcome_, _ in mono.certificates[:5]),
+                     "exponents": {name: _math(mono.exponents[name][1]) for name in ("x=0", "x=i")}})
     # agreement with the exact local analysis: trivial local monodromy at the poles exactly for odd p
     agree = all((row["verdict"] == "reducible") == (row["case"].startswith("odd")) for row in rows)
     agree &= all((logarithms.get(p_) == "no logarithms") == (p_ % 2 == 1) for p_ in (1, 2, 3))
     c_agree = log.record(Certificate(
-        "the verdicts agree with the exact Frobenius analysis at t0 = i pi/2: reducible (Liouvillian) exactly for odd p; "
-        "even and non-integer p and I13 != 0 give SO(3,C)", "Theorem 3.5",
+        "the verdicts agree with the exact Frobenius analysis at t0 = i pi/2: reducible (Liouvillian) exactly for odd p "
+        "(I13 = 0, or I23 = 0 by eq:lina); even and non-integer p and I13 != 0 give SO(3,C)", "Theorem 3.5",
         "comparison of the ball verdicts with the exact logarithm verdicts", Outcome.PASS if agree else Outcome.FAIL,
         0.0, len(rows), ", ".join(f"{row['case']}: {row['verdict']}" for row in rows)))
     even = next(row for row in rows if row["case"].startswith("even"))
-    mono_even = monodromy(*even["body"], digits=DIGITS)
-    finite = [c for c in mono_even.certificates if "infinite order" in c[0]][0][1]
+    mono_even = monos[even["case"]]
+    finite = next(c for c in mono_even.certificates if "infinite order" in c[0])[1]
     c_wrong = log.record(Certificate(
         "the monodromy group of the body with p = 2 (I13 = 0) is finite", "Conclusion",
         "ball enclosure: an eigenvalue of modulus != 1 refutes it", Outcome.FAIL if finite == "pass" else Outcome.UNKNOWN,
         0.0, 1, "tr M(x=0) - 1 lies outside [-2, 2]: an element of infinite order", expected=Outcome.FAIL))
+    # the Conclusion's meromorphy, tested on the group itself: a solution meromorphic at t0 = i pi/2 for every
+    # initial value means a trivial local monodromy there (x = e^t is biholomorphic near t0, x = i)
+    identity = acb_mat([[1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    not_identity = any(not (mono_even.matrices["x=i"][r, c] - identity[r, c]).contains(0)
+                       for r in range(3) for c in range(3))
+    c_meromorphic = log.record(Certificate(
+        "for I13 = 0 and p = 2 every solution of eq:whole is meromorphic at t0 = i pi/2 (the local monodromy, the "
+        "loop about x = i, is the identity)", "Conclusion",
+        f"ball enclosure (python-flint acb, {DIGITS} digits): an entry of M(x=i) - I whose ball excludes 0 refutes it",
+        Outcome.FAIL if not_identity else Outcome.UNKNOWN, 0.0, 9,
+        f"Re tr M(x=i) = {mono_even.matrices['x=i'].trace().real.str(10, radius=False)} (unipotent), M(x=i) != I: a logarithm "
+        "at t0, independently of the exact Frobenius recursion (residue)", expected=Outcome.FAIL))
     result.formula("galois_group", "Conclusion", "Differential Galois group of the Poisson equations (certified verdicts)",
                    [r"\text{" + row["case"] + r"}:\ (" + ",".join(row["body"]) + r")\ \to\ "
                     + (r"SO(3,\mathbb C)\ (\text{not Liouvillian})" if row["verdict"] == "SO(3,C)" else
@@ -124,7 +160,7 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
         paper.CONCLUSION_EVEN, "corrected",
         r"\text{even }p:\ \text{logarithms at }t_0=i\pi/2;\ \mathrm{Gal}=SO(3,\mathbb C)",
         "the Liouvillian part holds (the Galois group is SO(3,C), certified from the monodromy); the meromorphy "
-        "part does not: the exact Frobenius recursion finds logarithms for every even p", c_agree, c_wrong,
-        *verdict_certs))
+        "part does not: the exact Frobenius recursion finds logarithms for every even p, and for p = 2 the ball of "
+        "the monodromy about x = i excludes the identity", c_agree, c_wrong, c_meromorphic, *verdict_certs))
     result.exports.update(rows=rows)
     return result

@@ -38,7 +38,8 @@ import math
 
 from flint import acb, acb_mat, arb, ctx
 
-__all__ = ["SINGULAR_POINTS", "cross_matrix", "residues", "transfer", "path_transfer", "circle", "segment"]
+__all__ = ["SINGULAR_POINTS", "cross_matrix", "residues", "transfer", "path_transfer", "circle", "segment",
+           "guard_digits"]
 
 SINGULAR_POINTS = (acb(0), acb(0, 1), acb(0, -1))
 
@@ -70,14 +71,16 @@ def _distance_lower(c: acb) -> float:
     return min(float(abs(c - s).lower()) for s in SINGULAR_POINTS)
 
 
-def transfer(R: list, c: acb, h: acb, eps: float, max_order: int = 4000) -> acb_mat:
+def transfer(R: list, c: acb, h: acb, log10_eps: float, max_order: int = 8000) -> acb_mat:
     """Ball enclosure of the transfer matrix from c to c + h (module docstring), every radius including
-    a truncation bound below ``eps``.  Needs ``|h| < rho(c)`` (raises ValueError otherwise)."""
+    a truncation bound below ``10^log10_eps`` (bounds kept as logarithms: no float underflow at
+    hundreds of digits).  Needs ``|h| < rho(c)`` (raises ValueError otherwise)."""
     rho = _distance_lower(c)
     eta = float(abs(h).upper()) * (1 + 1e-12)
     if not eta < rho:
         raise ValueError(f"step {eta:.3g} not inside the disc of convergence {rho:.3g} at {c}")
     M = sum(_norm_upper(r) for r in R)
+    log_eps = log10_eps * math.log(10)
     g = [1 / (c - s) for s in SINGULAR_POINTS]
     T = [acb_mat([[1, 0, 0], [0, 1, 0], [0, 0, 1]])]
     Z = [acb_mat(3, 3) for _ in SINGULAR_POINTS]
@@ -93,8 +96,8 @@ def transfer(R: list, c: acb, h: acb, eps: float, max_order: int = 4000) -> acb_
         # the terms after order n: b_(n+1) eta^(n+1) / (1 - q), q = max(1, (M+n+1)/(n+2)) eta/rho
         q = max(1.0, (M + n + 1) / (n + 2)) * eta / rho
         if q < 1:
-            tail = math.exp(log_b + math.log((M + n) / (n + 1)) + (n + 1) * log_ratio) / (1 - q)
-            if tail < eps or n >= max_order:
+            log_tail = log_b + math.log((M + n) / (n + 1)) + (n + 1) * log_ratio - math.log1p(-q)
+            if log_tail < log_eps or n >= max_order:
                 break
         elif n >= max_order:
             raise ArithmeticError(f"no convergent majorant at {c} (M = {M:.3g}, eta/rho = {eta / rho:.3g})")
@@ -102,7 +105,8 @@ def transfer(R: list, c: acb, h: acb, eps: float, max_order: int = 4000) -> acb_
     total = T[k]
     for j in range(k - 1, -1, -1):
         total = total * h + T[j]
-    radius = arb(0, tail * (1 + 1e-9))
+    # the float logarithm is rounded up generously before it becomes a radius
+    radius = arb(0, arb(log_tail + 1e-9 * abs(log_tail) + 1e-9).exp())
     widen = acb(radius, radius)
     return acb_mat([[total[r, c] + widen for c in range(3)] for r in range(3)])
 
@@ -140,12 +144,34 @@ def circle(centre: acb, start: acb, turns: int = 1) -> list:
     return points
 
 
-def path_transfer(R: list, points: list, eps: float) -> acb_mat:
+def path_transfer(R: list, points: list, log10_eps: float) -> acb_mat:
     """The product of the step transfer matrices along ``points`` (each step from one point to the next)."""
     total = acb_mat([[1, 0, 0], [0, 1, 0], [0, 0, 1]])
     for a, b in zip(points, points[1:]):
-        total = total * transfer(R, a, b - a, eps)
+        total = total * transfer(R, a, b - a, log10_eps)
     return total
+
+
+def guard_digits(R: list) -> int:
+    """Decimal digits lost, relative to an absolute radius of 10^-digits, by the loops of
+    :mod:`suslov.kernel.monodromy` (an estimate; the caller checks the radius it gets and retries).
+
+    Two losses, both growing with ``|omega|`` (large near the equilibrium I13 = I23 = 0):
+
+    * the size of the matrices: a loop about a point with exponents 0, +-i sqrt(w.w) has eigenvalues
+      ``exp(+-2 pi sqrt(w.w))``, entries up to ``10^L`` with ``L = 2 pi max |Re sqrt(w.w)| / ln 10``;
+    * cancellation in each Taylor sum: the terms are bounded by the majorant ``(1 - eta/rho)^(-M)``,
+      ``2^M`` at ``eta/rho = 1/2``, while the sum is much smaller: ``M log10 2`` digits per step,
+      measured 0.36 M + 7 digits over a whole loop (M from 18 to 176); the 64 extra bits of
+      :func:`working_precision` (19 digits) cover the constant.
+    """
+    M = sum(_norm_upper(r) for r in R)
+    largest = 0.0
+    for r in R:
+        w1, w2, w3 = -r[1, 2], r[0, 2], -r[0, 1]
+        root = (w1 * w1 + w2 * w2 + w3 * w3).sqrt()
+        largest = max(largest, float(abs(root.real).upper()))
+    return math.ceil(0.4 * M + 2 * math.pi * largest / math.log(10))
 
 
 def working_precision(digits: int) -> int:
