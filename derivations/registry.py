@@ -1,7 +1,10 @@
 """The derivations the build knows, in dependency order.
 
 Each entry names a module with ``NAME``, ``TITLE``, optional ``REQUIRES`` and
-``run(log, options, *required_results) -> DerivationResult``.  Later issues add
+``run(log, options, *required_results) -> DerivationResult``; optional ``PREFETCH``, a tuple of
+``(label, values, work)`` for numeric certificates that need no other result: the build starts
+them in its worker processes before any derivation runs, and ``run`` collects them with
+``log.map_per_p(label, values, work)`` where it records them (``CertificateLog.prefetch``).  Later issues add
 their modules here; ``--only`` resolves names against this table.
 """
 from __future__ import annotations

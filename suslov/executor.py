@@ -176,6 +176,55 @@ def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkSto
     return results, len(pending)
 
 
+class Ahead:
+    """Chunks submitted to the local worker processes *now*, collected later (:func:`submit_ahead`).
+
+    The build starts its long numeric certificates (monodromy balls, enclosures) before the symbolic
+    derivations and collects them where they are recorded, so the two kinds of work overlap on the
+    cores; the results are the ones :func:`run_chunks` would return, in chunk order."""
+
+    def __init__(self, work, chunks, keys, store, workers):
+        self.work, self.chunks, self.keys, self.store = work, list(chunks), list(keys), store
+        self.results = [store.get(key) if store is not None else None for key in self.keys]
+        self.pool = _local_pool(workers)
+        self.workers = workers
+        self.futures = {self.pool.submit(work, chunk): i for i, chunk in enumerate(self.chunks)
+                        if self.results[i] is None}
+
+    def collect(self, on_finish=None) -> tuple[list, int]:
+        """(results in chunk order, number computed now): waits for the chunks still running."""
+        computed = len(self.futures)
+        try:
+            while self.futures:
+                done, _ = wait(set(self.futures), return_when=FIRST_COMPLETED)
+                for future in sorted(done, key=self.futures.get):
+                    i = self.futures.pop(future)
+                    self.results[i] = future.result()
+                    if self.store is not None:
+                        self.store.put(self.keys[i], self.results[i])
+                    if on_finish is not None:
+                        on_finish(i)
+        except BaseException:
+            self.cancel()
+            raise
+        return self.results, computed
+
+    def cancel(self) -> None:
+        """Drop what has not started; a pool with work left running is shut down (no orphan computes on)."""
+        running = [future for future in self.futures if not future.cancel()]
+        self.futures = {}
+        if running:
+            _POOLS.pop(self.workers, None)
+            self.pool.shutdown(wait=False, cancel_futures=True)
+
+
+def submit_ahead(work: Callable, chunks: list, keys: list[str], *, store: ChunkStore | None = None,
+                 workers: int | None = None) -> Ahead:
+    """Start ``[work(c) for c in chunks]`` in the kept local worker processes and return at once
+    (the chunks ``store`` already holds are not recomputed); :meth:`Ahead.collect` gets the results."""
+    return Ahead(work, chunks, keys, store, default_workers() if workers is None else workers)
+
+
 _POOLS: dict = {}
 
 

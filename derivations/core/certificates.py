@@ -94,6 +94,7 @@ class CertificateLog:
     scheduler: str | None = None  # map_per_p: a dask.distributed scheduler address instead
     cache: bool = False           # map_per_p: results from/to the content-keyed cache (derivations.core.cache)
     cache_report: list = field(default_factory=list)   # what came from the cache (volatile, cache_report.json)
+    prefetched: dict = field(default_factory=dict)     # label -> (values, work, suslov.executor.Ahead)
 
     def record(self, certificate: Certificate) -> Certificate:
         certificate.derivation = certificate.derivation or self.derivation
@@ -169,6 +170,17 @@ class CertificateLog:
             if report:
                 report(label, done[0], len(values), values[i])
 
+        ahead = self.prefetched.pop(label, None)
+        if ahead is not None and (ahead[0], ahead[1]) == (values, work):
+            if meanwhile is not None:
+                meanwhile()
+            results, computed = ahead[2].collect(on_finish=finished)
+            if ahead[2].store is not None:
+                self.cache_report.append({"phase": label, "values": len(values), "from_cache": len(values) - computed,
+                                          "work": f"{work.__module__}.{work.__qualname__}", "prefetched": True})
+            return results
+        if ahead is not None:    # prefetched with other arguments: not this phase's results
+            ahead[2].cancel()
         store, keys = None, [str(v) for v in values]
         if self.cache and cacheable:
             from derivations.core.cache import per_p_key, per_p_store
@@ -185,6 +197,33 @@ class CertificateLog:
             self.cache_report.append({"phase": label, "values": len(values), "from_cache": len(values) - computed,
                                       "work": f"{work.__module__}.{work.__qualname__}"})
         return results
+
+
+    def prefetch(self, label: str, values, work, cacheable: bool = True) -> None:
+        """Start ``map_per_p(label, values, work)`` now, in the local worker processes, and return at once;
+        the later ``map_per_p`` call with the same arguments collects the results (the certificates are
+        recorded there, in the usual order: the log and every output are as without the prefetch).
+
+        The build prefetches what derivations declare in ``PREFETCH`` (numeric certificates that need no
+        other result) before running any derivation, so that the numeric work of a cold build overlaps
+        the symbolic one.  Nothing is prefetched in one process (``workers`` 1) or on a Dask scheduler.
+        """
+        from suslov.executor import default_workers, submit_ahead
+
+        workers = default_workers() if self.workers is None else self.workers
+        if workers <= 1 or self.scheduler:
+            return
+        values = list(values)
+        store, keys = None, [str(v) for v in values]
+        if self.cache and cacheable:
+            from derivations.core.cache import per_p_key, per_p_store
+            store, keys = per_p_store(), [per_p_key(work, v) for v in values]
+        self.prefetched[label] = (values, work, submit_ahead(work, values, keys, store=store, workers=workers))
+
+    def cancel_prefetched(self) -> None:
+        """Drop the prefetched work nobody collected (a build that failed before reaching it)."""
+        while self.prefetched:
+            self.prefetched.popitem()[1][2].cancel()
 
 
 PARALLEL_MIN = 8   # per-p phases with fewer values are not worth starting processes for

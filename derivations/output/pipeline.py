@@ -138,15 +138,23 @@ def derive(options: BuildOptions, only: list[str] | None = None, progress: Progr
     log = CertificateLog(on_record=progress.certificate, on_phase=progress.phase, workers=options.jobs,
                          scheduler=options.scheduler, cache=options.cache)
     build = Build(options, names, log)
-    for index, name in enumerate(names, 1):
-        module = DERIVATIONS[name]
-        progress.start(index, len(names), name)
-        start = time.perf_counter()
-        with log.section(name):
-            required = [build.results[req] for req in getattr(module, "REQUIRES", ())]
-            build.results[name] = module.run(log, options, *required)
-        build.seconds[name] = time.perf_counter() - start
-        progress.done()
+    # numeric certificates that need no other result start at once in the worker processes; the
+    # derivations collect them where they record them (CertificateLog.prefetch)
+    for name in names:
+        for label, values, work in getattr(DERIVATIONS[name], "PREFETCH", ()):
+            log.prefetch(label, values, work)
+    try:
+        for index, name in enumerate(names, 1):
+            module = DERIVATIONS[name]
+            progress.start(index, len(names), name)
+            start = time.perf_counter()
+            with log.section(name):
+                required = [build.results[req] for req in getattr(module, "REQUIRES", ())]
+                build.results[name] = module.run(log, options, *required)
+            build.seconds[name] = time.perf_counter() - start
+            progress.done()
+    finally:
+        log.cancel_prefetched()
     return build
 
 

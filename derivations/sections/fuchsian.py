@@ -66,6 +66,30 @@ def _math(value) -> str:
     return text.replace("j", "i")
 
 
+def monodromy_summary(body: tuple) -> dict:
+    """The run-time :func:`suslov.validated.monodromy` of one body (I11, I22, I13, I23) at ``DIGITS``, as
+    plain data (balls do not pickle): verdict, certificates, the table's entries, and whether the loop
+    about x = i excludes the identity.  A top-level function: the build runs it in a worker process,
+    started before the symbolic derivations (``PREFETCH``)."""
+    from suslov.validated import monodromy   # python-flint balls; the run-time code, exactly as users call it
+
+    with stopwatch() as elapsed:
+        mono = monodromy(*body, digits=DIGITS)
+    identity = acb_mat([[1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    at_i = mono.matrices.get("x=i")
+    return {"verdict": mono.verdict, "liouvillian": mono.liouvillian, "radius": mono.radius,
+            "digits": mono.digits + mono.guard, "certificates": [tuple(c) for c in mono.certificates],
+            "exponents": {name: _math(mono.exponents[name][1]) for name in ("x=0", "x=i")},
+            "not_identity_at_i": at_i is not None and any(not (at_i[r, c] - identity[r, c]).contains(0)
+                                                          for r in range(3) for c in range(3)),
+            "re_trace_at_i": at_i.trace().real.str(10, radius=False) if at_i is not None else "",
+            "seconds": elapsed[0]}
+
+
+# the monodromy of the representative bodies needs no other result: started with the build (CertificateLog.prefetch)
+PREFETCH = (("monodromy of representative bodies", [tuple(body) for _, *body in BODIES], monodromy_summary),)
+
+
 def cross(w) -> sp.Matrix:
     """C(w) with y C(w) = y x w (row vectors)."""
     return sp.Matrix([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
@@ -100,30 +124,24 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
                    r"0,\ \pm i\sqrt{w\cdot w};\quad w\cdot w\big|_{x=\pm i}=u\cdot u-v\cdot v\mp 2i\,u\cdot v"
                    r"\overset{I_{13}=0}{=}-p^2", c_char, c_exp)
 
-    from suslov.validated import (
-        monodromy,  # python-flint balls; the run-time code, exactly as users call it
-    )
-
     logarithms = {row["p"]: row["verdict"] for row in residue_result.exports["log_rows"]}
-    rows, verdict_certs, monos = [], [], {}
-    for case, *body in BODIES:
-        with stopwatch() as elapsed:
-            mono = monodromy(*body, digits=DIGITS)
-        monos[case] = mono
-        outcome = {"SO(3,C)": Outcome.PASS, "reducible": Outcome.PASS}.get(mono.verdict, Outcome.UNKNOWN)
+    rows, verdict_certs, summaries = [], [], {}
+    for (case, *body), summary in zip(BODIES, log.map_per_p(*PREFETCH[0])):
+        summaries[case] = summary
         claim = (f"body (I11, I22, I13, I23) = ({', '.join(body)}), {case}: the differential Galois group of eq:whole is "
-                 + ("SO(3,C) (= PSL(2,C)): no Liouvillian solutions" if mono.verdict == "SO(3,C)" else
-                    "reducible (a torus): Liouvillian" if mono.verdict == "reducible" else "decided"))
-        detail = "; ".join(f"{text.split(':')[0]}: {outcome_}" for text, outcome_, _ in mono.certificates)
+                 + ("SO(3,C) (= PSL(2,C)): no Liouvillian solutions" if summary["verdict"] == "SO(3,C)" else
+                    "reducible (a torus): Liouvillian" if summary["verdict"] == "reducible" else "decided"))
+        outcome = {"SO(3,C)": Outcome.PASS, "reducible": Outcome.PASS}.get(summary["verdict"], Outcome.UNKNOWN)
+        detail = "; ".join(f"{text.split(':')[0]}: {outcome_}" for text, outcome_, _ in summary["certificates"])
         cert = log.record(Certificate(claim, "Conclusion", "ball enclosure (python-flint acb): validated Taylor steps "
                                       f"with majorant bounds along loops in x = e^t, {DIGITS} digits",
-                                      outcome, elapsed[0], len(mono.certificates), detail[:400]))
+                                      outcome, summary["seconds"], len(summary["certificates"]), detail[:400]))
         verdict_certs.append(cert)
-        rows.append({"case": case, "body": body, "verdict": mono.verdict, "liouvillian": mono.liouvillian,
-                     "radius": mono.radius, "certificate": cert.key, "digits": mono.digits + mono.guard,
+        rows.append({"case": case, "body": body, "verdict": summary["verdict"], "liouvillian": summary["liouvillian"],
+                     "radius": summary["radius"], "certificate": cert.key, "digits": summary["digits"],
                      "tests": "".join({"pass": "+", "fail": "-", "unknown": "?"}[outcome_]
-                                      for _, outcome_, _ in mono.certificates[:5]),
-                     "exponents": {name: _math(mono.exponents[name][1]) for name in ("x=0", "x=i")}})
+                                      for _, outcome_, _ in summary["certificates"][:5]),
+                     "exponents": summary["exponents"]})
     # agreement with the exact local analysis: trivial local monodromy at the poles exactly for odd p
     agree = all((row["verdict"] == "reducible") == (row["case"].startswith("odd")) for row in rows)
     agree &= all((logarithms.get(p_) == "no logarithms") == (p_ % 2 == 1) for p_ in (1, 2, 3))
@@ -132,24 +150,20 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
         "(I13 = 0, or I23 = 0 by eq:lina); even and non-integer p and I13 != 0 give SO(3,C)", "Theorem 3.5",
         "comparison of the ball verdicts with the exact logarithm verdicts", Outcome.PASS if agree else Outcome.FAIL,
         0.0, len(rows), ", ".join(f"{row['case']}: {row['verdict']}" for row in rows)))
-    even = next(row for row in rows if row["case"].startswith("even"))
-    mono_even = monos[even["case"]]
-    finite = next(c for c in mono_even.certificates if "infinite order" in c[0])[1]
+    even = summaries[next(row for row in rows if row["case"].startswith("even"))["case"]]
+    finite = next(c for c in even["certificates"] if "infinite order" in c[0])[1]
     c_wrong = log.record(Certificate(
         "the monodromy group of the body with p = 2 (I13 = 0) is finite", "Conclusion",
         "ball enclosure: an eigenvalue of modulus != 1 refutes it", Outcome.FAIL if finite == "pass" else Outcome.UNKNOWN,
         0.0, 1, "tr M(x=0) - 1 lies outside [-2, 2]: an element of infinite order", expected=Outcome.FAIL))
     # the Conclusion's meromorphy, tested on the group itself: a solution meromorphic at t0 = i pi/2 for every
     # initial value means a trivial local monodromy there (x = e^t is biholomorphic near t0, x = i)
-    identity = acb_mat([[1, 0, 0], [0, 1, 0], [0, 0, 1]])
-    not_identity = any(not (mono_even.matrices["x=i"][r, c] - identity[r, c]).contains(0)
-                       for r in range(3) for c in range(3))
     c_meromorphic = log.record(Certificate(
         "for I13 = 0 and p = 2 every solution of eq:whole is meromorphic at t0 = i pi/2 (the local monodromy, the "
         "loop about x = i, is the identity)", "Conclusion",
         f"ball enclosure (python-flint acb, {DIGITS} digits): an entry of M(x=i) - I whose ball excludes 0 refutes it",
-        Outcome.FAIL if not_identity else Outcome.UNKNOWN, 0.0, 9,
-        f"Re tr M(x=i) = {mono_even.matrices['x=i'].trace().real.str(10, radius=False)} (unipotent), M(x=i) != I: a logarithm "
+        Outcome.FAIL if even["not_identity_at_i"] else Outcome.UNKNOWN, 0.0, 9,
+        f"Re tr M(x=i) = {even['re_trace_at_i']} (unipotent), M(x=i) != I: a logarithm "
         "at t0, independently of the exact Frobenius recursion (residue)", expected=Outcome.FAIL))
     result.formula("galois_group", "Conclusion", "Differential Galois group of the Poisson equations (certified verdicts)",
                    [r"\text{" + row["case"] + r"}:\ (" + ",".join(row["body"]) + r")\ \to\ "

@@ -89,8 +89,8 @@ def transfer(R: list, c: acb, h: acb, log10_eps: float, max_order: int = 8000) -
     n = 0
     while True:
         # Z_(s,n) = g_s T_n - g_s Z_(s,n-1);  (n+1) T_(n+1) = sum_s Z_(s,n) R_s
-        Z = [g[s] * T[n] - g[s] * Z[s] for s in range(3)]
-        T.append((Z[0] * R[0] + Z[1] * R[1] + Z[2] * R[2]) * (acb(1) / (n + 1)))
+        Z = [g[s] * (T[n] - Z[s]) for s in range(3)]
+        T.append((Z[0] * R[0] + Z[1] * R[1] + Z[2] * R[2]) / (n + 1))
         log_b += math.log((M + n) / (n + 1))
         n += 1
         # the terms after order n: b_(n+1) eta^(n+1) / (1 - q), q = max(1, (M+n+1)/(n+2)) eta/rho
