@@ -1,7 +1,8 @@
 """Where the cold default build spends its time, this revision beside an earlier one (issue 24).
 
-For each revision (this checkout and ``--base REV``, a git worktree run with its own packages first
-on the path, in the same run so both see the same machine state):
+For each revision (``--revision``, by default HEAD, and ``--base REV``; each a git worktree run with
+its own packages first on the path, in the same run so both see the same machine state; the
+working tree is not measured, so editing it during a run changes nothing):
 
 * **wall time** of ``python build_formulas.py --no-cache --out TMP --quiet`` on all cores and with
   ``--jobs 1`` (one process), medians of ``--repeat`` runs;
@@ -13,7 +14,7 @@ on the path, in the same run so both see the same machine state):
   excluded), at the default pmax and, with ``--pmax 51``, at pmax 51 too; ``--pmax 101`` adds the
   all-cores wall time at pmax 101 for both.
 
-Run: ``python bench/bench_build_profile.py [--base 7b151a6] [--repeat 3] [--pmax 51 101]``
+Run: ``python bench/bench_build_profile.py [--base 7b151a6] [--revision HEAD] [--repeat 3] [--pmax 51 101]``
 (about 3 minutes with the defaults on the 2-core machine, plus about 4 for ``--pmax 101``); writes
 ``bench/results/build_profile.md`` and ``.json``.
 """
@@ -107,7 +108,7 @@ def report(data: dict) -> str:
              f"Machine: {data['machine']} ({data['cores']} cores, shared), Python {data['python']}; "
              f"`python bench/bench_build_profile.py --base {data['base_revision']}`; medians of {data['repeat']} "
              "cold builds (`--no-cache`), both revisions in the same run.", "",
-             f"| measurement | {data['base_revision']} (before) | this revision | ratio | target |",
+             f"| measurement | {data['base_revision']} (before) | {data['revision']} | ratio | target |",
              "|---|---:|---:|---:|---|"]
     targets = {"all cores": "<= 8 s", "one process": "<= 10 s", "pmax 101": "<= 50 s"}
     for key in ("all cores", "one process") + tuple(k for k in now if k.startswith("pmax")):
@@ -136,23 +137,29 @@ def report(data: dict) -> str:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--base", default=BASE, help=f"the revision to compare with (default {BASE})")
+    ap.add_argument("--revision", default="HEAD", help="the revision measured against the base (default HEAD)")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--pmax", type=int, nargs="*", default=[], help="also compare outputs (and time) at these pmax")
     args = ap.parse_args(argv)
     with tempfile.TemporaryDirectory(prefix="bench-build-profile-") as tmp_name:
         tmp = Path(tmp_name)
-        tree = tmp / "base"
-        subprocess.run(["git", "worktree", "add", "--detach", "-q", str(tree), args.base], cwd=ROOT, check=True)
+        trees = {"base": tmp / "base", "this": tmp / "this"}
+        for name, revision in (("base", args.base), ("this", args.revision)):
+            subprocess.run(["git", "worktree", "add", "--detach", "-q", str(trees[name]), revision], cwd=ROOT,
+                           check=True)
         try:
             data = {"machine": cpu_name(), "cores": os.cpu_count(), "python": platform.python_version(),
                     "base_revision": args.base, "repeat": args.repeat,
-                    "base": measure("base", tree, tmp, args.repeat, args.pmax),
-                    "this": measure("this", ROOT, tmp, args.repeat, args.pmax)}
+                    "revision": subprocess.run(["git", "rev-parse", "--short", args.revision], cwd=ROOT,
+                                               capture_output=True, text=True).stdout.strip(),
+                    "base": measure("base", trees["base"], tmp, args.repeat, args.pmax),
+                    "this": measure("this", trees["this"], tmp, args.repeat, args.pmax)}
             data["identical"] = {"default pmax": same_tree(tmp / "base-a0", tmp / "this-a0")}
             for pmax in args.pmax:
                 data["identical"][f"pmax {pmax}"] = same_tree(tmp / f"base-p{pmax}", tmp / f"this-p{pmax}")
         finally:
-            subprocess.run(["git", "worktree", "remove", "--force", str(tree)], cwd=ROOT, check=False)
+            for tree in trees.values():
+                subprocess.run(["git", "worktree", "remove", "--force", str(tree)], cwd=ROOT, check=False)
     write_results("build_profile", data, report(data))
     print(report(data))
     return 0 if not any(data["identical"].values()) else 1

@@ -179,7 +179,10 @@ def context(build: Build) -> dict:
         "odd_ps": build.options.odd_p_values(),
         "even_ps": build.options.even_p_values(),
         "names": build.names,
-        "titles": {name: DERIVATIONS[name].TITLE for name in build.names},
+        "titles": {**{name: DERIVATIONS[name].TITLE for name in build.names},
+                   "roundtrip": "The emitted module, as written (round trip)"},
+        # the certificates document lists every derivation's certificates and the round trip's
+        "certificate_sections": build.names + ["roundtrip"],
         "results": results,
         "certificates": certificates,
         "certificate_by_key": by_key,

@@ -20,6 +20,7 @@ import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
 from derivations.core.typeset import latex
+from derivations.output.claim_tex import claim_latex
 
 TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
 
@@ -72,6 +73,7 @@ def _environment(tex: bool) -> jinja2.Environment:
     env.filters["breakable"] = tex_breakable
     env.filters["py"] = python_source
     env.filters["latex"] = latex
+    env.filters["claim"] = claim_latex
     return env
 
 
