@@ -34,7 +34,7 @@ from pathlib import Path
 from derivations.core.cache import TreeCache, build_key
 from derivations.core.certificates import CertificationFailure
 from derivations.core.options import PMAX_LIMIT, BuildOptions
-from derivations.output.estimate import estimate_seconds
+from derivations.output.estimate import Calibration, estimate_seconds, predicted_seconds
 from derivations.output.pdf import PdfError, compile_pdfs, document_report
 from derivations.output.pipeline import (
     GENERATED,
@@ -234,11 +234,13 @@ def main(argv: list[str] | None = None) -> int:
     if not args.quiet and not args.only and options.pmax > ESTIMATE_FROM:
         seconds = estimate_seconds(options.pmax, options.jobs)
         if seconds is not None:
-            print(f"build_formulas.py: --pmax {options.pmax}: estimated {seconds / 60:.1f} min on a machine like the "
-                  "benchmark's (power-law fit in bench/results/build.md); proceeding", file=sys.stderr)
+            print(f"build_formulas.py: --pmax {options.pmax}: estimated {seconds / 60:.1f} min on the benchmark's "
+                  "machine (power-law fit in bench/results/build.md), recalibrated on this machine as the "
+                  "build runs; proceeding", file=sys.stderr)
 
+    calibration = None if args.only else Calibration(predicted_seconds(options.pmax, options.jobs))
     try:
-        build = derive(options, args.only, Progress(quiet=args.quiet))
+        build = derive(options, args.only, Progress(quiet=args.quiet, calibration=calibration))
     except CertificationFailure as failure:
         print(f"build_formulas.py: {failure}", file=sys.stderr)
         print("build_formulas.py: nothing was written", file=sys.stderr)

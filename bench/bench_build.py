@@ -38,6 +38,7 @@ from machine_info import cpu_name  # noqa: E402
 from results_io import write_results  # noqa: E402
 
 LINE = re.compile(r"\[\d+/\d+\] (\w+): (\d+) certificates, ([0-9.]+) s")
+ESTIMATE = re.compile(r"build: (\d+) s so far, about (\d+) s left")
 PER_P = re.compile(r"^p = (\d+):")
 
 
@@ -60,8 +61,10 @@ def build(pmax: int, jobs: int | None, out: Path, cache: Path | None = None, roo
         raise RuntimeError(f"{' '.join(command)} failed:\n{proc.stderr[-2000:]}")
     peak = max(before, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
     derivations = {m.group(1): float(m.group(3)) for m in LINE.finditer(proc.stdout + proc.stderr)}
+    # the progress lines' calibrated estimate of the whole build ("so far" + "left"), as a share of the wall time
+    estimates = [round((float(a) + float(b)) / wall, 3) for a, b in ESTIMATE.findall(proc.stderr)]
     return {"pmax": pmax, "jobs": jobs or "all cores", "wall_seconds": wall, "peak_rss_mib": peak / 1024,
-            "derivations": derivations}
+            "derivations": derivations, "estimate_over_wall": estimates}
 
 
 def per_p_costs(out: Path) -> dict:
@@ -144,6 +147,17 @@ def report(data: dict) -> str:
                 continue
             ratio = f"{r['wall_seconds'] / mine:.1f}x" if mine else ""
             lines.append(f"| {r['pmax']} | {r['wall_seconds']:.1f} | {f'{mine:.1f}' if mine else ''} | {ratio} |")
+    estimated = [r for r in data["runs"] if r.get("estimate_over_wall")]
+    if estimated:
+        lines += ["", "## The progress estimate, calibrated on this machine as the build runs", "",
+                  "After each derivation the build prints its time so far and the time left (the benchmark's "
+                  "per-derivation prediction rescaled by what this machine measured so far; "
+                  "`derivations/output/estimate.py`). Their sum over the measured wall time, first line and worst "
+                  "line (target: within a factor 2):", "", "| pmax | jobs | lines | first | min | max |",
+                  "| ---: | ---: | ---: | ---: | ---: | ---: |"]
+        for r in estimated:
+            e = r["estimate_over_wall"]
+            lines.append(f"| {r['pmax']} | {r['jobs']} | {len(e)} | {e[0]:.2f} | {min(e):.2f} | {max(e):.2f} |")
     lines += ["", f"## Growth of the per-p certificates (from the pmax {data['largest_pmax']} run, "
               f"{data.get('costs_from', 'one process')})", "",
               "| derivation | exponent k (cost of one p ~ p^k; odd / even p) | largest p | its seconds | "

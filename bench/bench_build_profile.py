@@ -14,7 +14,8 @@ working tree is not measured, so editing it during a run changes nothing):
   excluded), at the default pmax and, with ``--pmax 51``, at pmax 51 too; ``--pmax 101`` adds the
   all-cores wall time at pmax 101 for both.
 
-Run: ``python bench/bench_build_profile.py [--base 7b151a6] [--revision HEAD] [--repeat 3] [--pmax 51 101]``
+Run: ``python bench/bench_build_profile.py [--base 7b151a6] [--revision HEAD] [--repeat 3] [--pmax 51 101]
+[--name build_profile]``
 (about 3 minutes with the defaults on the 2-core machine, plus about 4 for ``--pmax 101``); writes
 ``bench/results/build_profile.md`` and ``.json``.
 """
@@ -42,7 +43,7 @@ from results_io import write_results  # noqa: E402
 BASE = "7b151a6"    # the last revision before issue 24 (SymPy's expand/Poly on every zero test, no prefetch)
 VOLATILE = {"certificate_costs.json", "certificate_costs.tex", "certificate_measurements.json", "cache_report.json"}
 LINE = re.compile(r"^\s+(\w+)\s+\d+ certificates\s+([0-9.]+) s", re.M)
-LIBRARIES = ("sympy", "symengine", "flint", "mpmath", "numpy", "scipy", "jinja2")
+LIBRARIES = ("sympy", "symengine", "flint", "mpmath", "gmpy2", "numpy", "scipy", "jinja2")
 
 # run inside the profiled subprocess: the build's main() under cProfile, self time by owning package
 PROFILE_DRIVER = r"""
@@ -55,7 +56,8 @@ status = build_formulas.main(sys.argv[1:])
 profile.disable()
 owners = collections.Counter()
 for (path, _, name), (_, _, self_time, _, _) in pstats.Stats(profile).stats.items():
-    owner = next((lib for lib in LIBRARIES if f"/{lib}/" in path), None)
+    # C extensions (python-flint, symengine, gmpy2) show as "~" with the type or module in the name
+    owner = next((lib for lib in LIBRARIES if f"/{lib}/" in path or (path == "~" and f"{lib}." in name)), None)
     if owner is None:
         owner = ("derivations" if "/derivations/" in path else "suslov" if "/suslov/" in path
                  else "builtins" if path == "~" else "other")
@@ -140,6 +142,7 @@ def main(argv=None) -> int:
     ap.add_argument("--revision", default="HEAD", help="the revision measured against the base (default HEAD)")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--pmax", type=int, nargs="*", default=[], help="also compare outputs (and time) at these pmax")
+    ap.add_argument("--name", default="build_profile", help="results file name in bench/results (default build_profile)")
     args = ap.parse_args(argv)
     with tempfile.TemporaryDirectory(prefix="bench-build-profile-") as tmp_name:
         tmp = Path(tmp_name)
@@ -160,7 +163,7 @@ def main(argv=None) -> int:
         finally:
             for tree in trees.values():
                 subprocess.run(["git", "worktree", "remove", "--force", str(tree)], cwd=ROOT, check=False)
-    write_results("build_profile", data, report(data))
+    write_results(args.name, data, report(data))
     print(report(data))
     return 0 if not any(data["identical"].values()) else 1
 

@@ -1,7 +1,8 @@
-"""The build's time estimate before starting (issue 13): a power law per per-p phase, from the benchmark."""
+"""The build's time estimate before starting (issue 13): a power law per per-p phase, from the benchmark;
+and while it runs, calibrated on this machine (issue 26)."""
 import json
 
-from derivations.output.estimate import BENCH, estimate_seconds
+from derivations.output.estimate import BENCH, Calibration, estimate_seconds, predicted_seconds
 
 
 def test_estimate_from_a_synthetic_benchmark(tmp_path):
@@ -34,3 +35,36 @@ def test_committed_benchmark_gives_an_estimate():
     measured = largest["wall_seconds"]
     assert abs(estimate_seconds(largest["pmax"], 1) - measured) < 1e-6 * measured
     assert estimate_seconds(101, 2) > estimate_seconds(51, 2)
+
+
+def test_predicted_seconds_per_derivation_from_a_synthetic_benchmark(tmp_path):
+    """residue costs 0.01 p per p; the one-process run at pmax 20 measured residue 3 s, model 1 s in 10 s of
+    wall time: at pmax 60 residue takes its measured 3 s plus the phase from p = 21 to 60, the rest
+    (10 - 4 s: start-up, rendering) stays."""
+    growth = {"residue": {"classes": [{"coefficient": 0.01, "exponent": 1.0, "first": 1, "step": 1}]}}
+    bench = tmp_path / "build.json"
+    bench.write_text(json.dumps({"growth": growth, "runs": [
+        {"pmax": 20, "jobs": 1, "wall_seconds": 10.0, "derivations": {"model": 1.0, "residue": 3.0}},
+        {"pmax": 80, "jobs": 1, "wall_seconds": 99.0, "derivations": {"model": 1.0, "residue": 50.0}}]}))
+    predicted = predicted_seconds(60, 1, bench)
+    assert predicted["model"] == 1.0 and predicted["rest"] == 6.0
+    assert abs(predicted["residue"] - (3.0 + 0.01 * sum(range(21, 61)))) < 1e-12
+
+
+def test_calibration_scales_the_prediction_by_what_this_machine_measured():
+    calibration = Calibration({"model": 1.0, "residue": 2.0, "galois": 7.0, "rest": 0.5})
+    assert calibration.left() is None                         # nothing measured yet
+    calibration.finished("fuchsian", 3.0)                     # unknown to the benchmark: left out
+    assert calibration.left() is None
+    calibration.finished("model", 2.0)                        # this machine: twice as slow
+    assert calibration.factor() == 2.0
+    assert abs(calibration.left() - 2.0 * (2.0 + 7.0 + 0.5)) < 1e-12
+    calibration.finished("residue", 3.0)                      # 5 s for 3 benchmark seconds
+    assert abs(calibration.left() - 5.0 / 3.0 * 7.5) < 1e-12
+
+
+def test_the_committed_benchmark_splits_by_derivation():
+    data = json.loads(BENCH.read_text())
+    run = min((r for r in data["runs"] if r["jobs"] == 1), key=lambda r: r["pmax"])
+    predicted = predicted_seconds(run["pmax"], 1)
+    assert abs(sum(predicted.values()) - run["wall_seconds"]) < 1e-6 * run["wall_seconds"]

@@ -226,7 +226,7 @@ class CertificateLog:
             self.prefetched.popitem()[1][2].cancel()
 
 
-PARALLEL_MIN = 8   # per-p phases with fewer values are not worth starting processes for
+PARALLEL_MIN = 16   # per-p phases with fewer values are not worth starting processes for
 
 
 @contextmanager

@@ -7,6 +7,15 @@ first integrals, the round trip of the emitted module), summed over the p the bu
 and, for the phases that run on the workers, divided by their number; plus the rest of the build
 as measured by the largest one-process benchmark.  An estimate from a power law,
 not a promise: the build says so, and proceeds.
+
+That estimate is the benchmark machine's.  While the build runs, :class:`Calibration` rescales it
+to *this* machine (issue 26: "calibrated per machine on the fly, not from a committed
+constant"): :func:`predicted_seconds` splits the benchmark's prediction by derivation (the nearest
+benchmarked run of the same kind, one process or all cores, with its per-p phases moved to this
+pmax along their power laws), and after each finished derivation the time left is the prediction
+for the rest times the ratio measured / predicted over what has finished.  The committed numbers
+give only the *shape* (which derivation costs what share, how each phase grows with p); the
+scale is measured here.
 """
 from __future__ import annotations
 
@@ -17,6 +26,8 @@ from pathlib import Path
 from derivations.sections.galois import (
     GALOIS_PMAX,  # galois decides the conjecture for p <= max(pmax, GALOIS_PMAX)
 )
+
+MIN_CALIBRATION = 0.02   # the time left is said once this share of the prediction has finished
 
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "results" / "build.json"
 PARALLEL = ("galois", "meromorphic", "residue", "roundtrip")   # the phases run through CertificateLog.map_per_p
@@ -44,3 +55,62 @@ def estimate_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH)
             measured_total += cost(measured_top)
     rest = max(0.0, base_run["wall_seconds"] - measured_total)   # everything that is not a per-p phase
     return rest + per_p_total
+
+
+def _phase(growth: dict, name: str, pmax: int) -> float:
+    """Benchmark seconds of derivation ``name``'s per-p phase for every p up to ``pmax`` (0 without a law)."""
+    top = max(pmax, GALOIS_PMAX) if name == "galois" else pmax
+    return sum(c["coefficient"] * p ** c["exponent"] for c in growth.get(name, {}).get("classes", ())
+               for p in range(c["first"], top + 1, c["step"]))
+
+
+def predicted_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH) -> dict | None:
+    """Benchmark-machine seconds per derivation of a build at ``pmax`` (and ``"rest"``: start-up,
+    rendering, the round trip), or None without benchmark data with per-derivation times."""
+    try:
+        data = json.loads(bench.read_text(encoding="utf-8"))
+        growth = data["growth"]
+        kind = 1 if workers == 1 else "all cores"
+        runs = [r for r in data["runs"] if r.get("derivations") and r["jobs"] == kind] or \
+            [r for r in data["runs"] if r.get("derivations")]
+        below = [r for r in runs if r["pmax"] <= pmax]
+        run = max(below, key=lambda r: r["pmax"]) if below else min(runs, key=lambda r: r["pmax"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    workers = max(1, workers or os.cpu_count() or 1) if run["jobs"] != 1 else 1
+
+    def moved(name: str) -> float:
+        share = 1.0 / workers if name in PARALLEL else 1.0
+        return share * (_phase(growth, name, pmax) - _phase(growth, name, run["pmax"]))
+
+    predicted = {name: max(0.0, seconds + moved(name)) for name, seconds in run["derivations"].items()}
+    predicted["rest"] = max(0.0, run["wall_seconds"] - sum(run["derivations"].values()) + moved("roundtrip"))
+    return predicted
+
+
+class Calibration:
+    """The time left in a build, on this machine: the benchmark's per-derivation prediction for what
+    has not finished, times measured / predicted over what has (module docstring).  Derivations the
+    benchmark did not know are left out of both sums."""
+
+    def __init__(self, predicted: dict | None):
+        self.predicted = dict(predicted or {})
+        self.measured: dict = {}
+
+    def finished(self, name: str, seconds: float) -> None:
+        self.measured[name] = seconds
+
+    def factor(self) -> float | None:
+        """This machine's seconds per benchmark second so far (None until enough has finished)."""
+        done = [n for n in self.measured if n in self.predicted and n != "rest"]
+        predicted = sum(self.predicted[n] for n in done)
+        total = sum(self.predicted.values())
+        if not total or predicted < MIN_CALIBRATION * total or predicted <= 0:
+            return None
+        return sum(self.measured[n] for n in done) / predicted
+
+    def left(self) -> float | None:
+        factor = self.factor()
+        if factor is None:
+            return None
+        return factor * sum(s for n, s in self.predicted.items() if n not in self.measured)

@@ -90,8 +90,10 @@ class Progress:
     """One line per derivation; on a terminal also a live counter and, in per-p phases, the p reached
     and an estimate of the time left (when stderr is not a terminal: only the line per derivation)."""
 
-    def __init__(self, stream=sys.stderr, quiet: bool = False):
+    def __init__(self, stream=sys.stderr, quiet: bool = False, calibration=None):
         self.stream, self.quiet = stream, quiet
+        # derivations.output.estimate.Calibration: after each derivation, the build's time left on this machine
+        self.calibration, self.started = calibration, time.perf_counter()
         self.live = hasattr(stream, "isatty") and stream.isatty()
         self.count = 0
         self.phase_text = ""
@@ -124,10 +126,17 @@ class Progress:
         self.phase_text = f"; {label}: p = {value} ({done}/{total}){estimate}"
         self._show()
 
-    def done(self):
+    def done(self, name: str | None = None):
+        now = time.perf_counter()
         if not self.quiet:
-            line = f"{self.prefix}: {self.count} certificates, {time.perf_counter() - self.t0:.2f} s"
-            self.stream.write(("\r" + line.ljust(100)[:160].rstrip() if self.live else line) + "\n")
+            line = f"{self.prefix}: {self.count} certificates, {now - self.t0:.2f} s"
+            if self.calibration is not None and name is not None:
+                self.calibration.finished(name, now - self.t0)
+                left = self.calibration.left()
+                if left is not None:
+                    line += (f"; build: {now - self.started:.0f} s so far, about {left:.0f} s left "
+                             f"(this machine: {self.calibration.factor():.2f}x the benchmark's)")
+            self.stream.write(("\r" + line.ljust(100).rstrip() if self.live else line) + "\n")
             self.stream.flush()
 
 
@@ -152,7 +161,7 @@ def derive(options: BuildOptions, only: list[str] | None = None, progress: Progr
                 required = [build.results[req] for req in getattr(module, "REQUIRES", ())]
                 build.results[name] = module.run(log, options, *required)
             build.seconds[name] = time.perf_counter() - start
-            progress.done()
+            progress.done(name)
     finally:
         log.cancel_prefetched()
     return build

@@ -53,10 +53,13 @@ def limit_series(u, v, g0, at_plus: bool, terms: int):
     coeffs = [[mpmath.mpf(c) for c in g0]]
     w0 = w[0]
     for k in range(1, terms + 1):
-        rhs = [mpmath.mpf(0)] * 3
-        for j in range(1, k + 1):
-            c = cross(coeffs[k - j], w[j])
-            rhs = [rhs[i] + s * c[i] for i in range(3)]
+        r0 = r1 = r2 = mpmath.mpf(0)
+        for j in range(1, k + 1):  # sum_j s (gamma_(k-j) x w_j), component by component (cross() inlined)
+            g_, w_ = coeffs[k - j], w[j]
+            r0 += s * (-g_[2] * w_[1])
+            r1 += s * (g_[2] * w_[0])
+            r2 += s * (g_[0] * w_[1] - g_[1] * w_[0])
+        rhs = [r0, r1, r2]
         M = mpmath.matrix([[k, 0, s * w0[1]], [0, k, -s * w0[0]], [-s * w0[1], s * w0[0], k]])
         coeffs.append(list(mpmath.lu_solve(M, mpmath.matrix(rhs))))
     return coeffs
@@ -74,12 +77,17 @@ def eval_series(coeffs, x):
 def taylor_step(g, t0, h, u, v, tol):
     """gamma(t0 + h) from gamma(t0) by one Taylor series of gamma' = gamma x (u tanh + v sech)."""
     T, S, G = [mpmath.tanh(t0)], [mpmath.sech(t0)], [list(g)]
+    W = []     # omega's Taylor coefficients, each computed once (the same operations as inline: same digits)
     total, power, n, small = list(g), mpmath.mpf(1), 0, 0
     while small < 3:
-        acc = [mpmath.mpf(0)] * 3
-        for j in range(n + 1):
-            c = cross(G[j], [u[i] * T[n - j] + v[i] * S[n - j] for i in range(2)])
-            acc = [acc[i] + c[i] for i in range(3)]
+        W.append([u[i] * T[n] + v[i] * S[n] for i in range(2)])
+        a0 = a1 = a2 = mpmath.mpf(0)
+        for j in range(n + 1):     # sum_j G_j x W_(n-j), component by component (cross() inlined)
+            g_, w_ = G[j], W[n - j]
+            a0 += -g_[2] * w_[1]
+            a1 += g_[2] * w_[0]
+            a2 += g_[0] * w_[1] - g_[1] * w_[0]
+        acc = [a0, a1, a2]
         T.append(mpmath.fsum(S[j] * S[n - j] for j in range(n + 1)) / (n + 1))
         S.append(-mpmath.fsum(T[j] * S[n - j] for j in range(n + 1)) / (n + 1))
         G.append([a / (n + 1) for a in acc])
