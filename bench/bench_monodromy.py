@@ -110,7 +110,7 @@ def main(argv=None) -> int:
              f"| one general body (5/4, 1, 3/10, -1/2), every entry to radius {single['radius']:.1e} | "
              f"{single['median_seconds']:.2f} s (median of 5), verdict {single['verdict']} | <= 2 s |",
              f"| {n} x {n} slice of (I13, I23) in [-0.6, 0.6]^2, I11 = 2, I22 = 1, radius 1e-{args.digits} asked "
-             "(working digits per body: that plus the guard for its |omega|) | "
+             "(working digits per body: that plus the guard for the size of omega) | "
              f"{seconds:.0f} s on {executor.default_workers() if args.workers is None else args.workers} workers | "
              "<= 600 s |",
              f"| verdicts | {', '.join(f'{k}: {v}' for k, v in counts.items())} | |",
