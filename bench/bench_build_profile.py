@@ -106,7 +106,7 @@ def measure(name: str, root: Path, tmp: Path, repeat: int, pmaxes: list) -> dict
 
 def report(data: dict) -> str:
     base, now = data["base"], data["this"]
-    lines = [f"# Cold default build: where the time goes (issue 24)", "",
+    lines = ["# Cold default build: where the time goes (issue 24)", "",
              f"Machine: {data['machine']} ({data['cores']} cores, shared), Python {data['python']}; "
              f"`python bench/bench_build_profile.py --base {data['base_revision']}`; medians of {data['repeat']} "
              "cold builds (`--no-cache`), both revisions in the same run.", "",

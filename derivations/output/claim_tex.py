@@ -17,8 +17,8 @@ and code in typewriter type).  Inside a run: identifiers get subscripts (``I11``
 macros, ``^`` takes the following group, number or identifier as its exponent, ``sqrt(...)`` and
 ``hat(...)`` become ``\\sqrt{...}`` and ``\\hat{...}``, ``oo`` is ``\\infty``, a standalone ``x``
 between two operands is ``\\times``, and ``->``, ``+-``, ``-+``, ``<=``, ``>=``, ``!=``, ``*`` their
-symbols.  Nothing is dropped: every character of the claim has its image (the round trip
-``tests/test_claim_tex.py`` checks that the operands survive in order).
+symbols.  Nothing is dropped: every token of the claim has its image (``tests/test_claim_tex.py``
+checks that every digit of every claim survives, and that no ASCII operator is left in the text).
 """
 from __future__ import annotations
 
@@ -248,7 +248,7 @@ def _classify(tokens: list) -> list:
             out.append((kind, text, "math"))
     # a standalone x between two mathematical operands is the product sign (``-(I11 I22) x printed
     # eq:d``, ``w x I^-1 a``, ``{...} x d``); ``by x and``, ``x = i``, ``(x^2)`` keep the variable
-    for i, (kind, text, role) in enumerate(out):
+    for i, (kind, text, _) in enumerate(out):
         if kind != "word" or text != "x" or not (0 < i < len(out) - 1) or out[i - 1][0] != "space" \
                 or out[i + 1][0] != "space":
             continue
@@ -260,8 +260,12 @@ def _classify(tokens: list) -> list:
     return out
 
 
-def claim_latex(text) -> str:
-    """The claim (or note) as LaTeX text with its formulas as inline mathematics."""
+def claim_latex(claim) -> str:
+    """The claim (or note) as LaTeX text with its formulas as inline mathematics.
+
+    >>> print(claim_latex("Re Lambda^2 = (I11 I22)^2 x printed eq:neccg12"))
+    $\\operatorname{Re} \\Lambda^{2} = (I_{11} I_{22})^{2} \\times$ printed \\texttt{eq:neccg12}
+    """
     pieces, run = [], []
 
     def flush():
@@ -279,7 +283,7 @@ def claim_latex(text) -> str:
         pieces.append(_text(tail))
         run.clear()
 
-    for kind, text, role in _classify(_tokens(str(text))):
+    for kind, text, role in _classify(_tokens(str(claim))):
         if role in ("prose", "break"):
             flush()
             pieces.append("\\texttt{" + _escape(text) + "}" if kind == "code" else _escape(text))
