@@ -87,3 +87,17 @@ def test_products_expand_to_identities_and_perturbations_fail(a, b, k):
 def test_normal_form_counts_terms():
     form = normal_form(x**2 + 2 * x * y + y**2 - (x + y) ** 2, PLAIN)
     assert form.is_zero and form.terms_tested >= 1
+
+
+def test_cancelled_is_sympy_cancel():
+    """cancelled() skips SymPy's gcds only where the canonical test says zero; the object equals sympy.cancel's."""
+    import sympy as sp
+
+    from derivations.core.exact import Domain, cancelled
+
+    x, y = sp.symbols("x y")
+    for expr in ((x**2 - y**2) / (x - y) - x - y,              # zero
+                 (x**2 - y**2) / (x - y) - x,                  # y, after a gcd
+                 (x + sp.I * y) / (x**2 + y**2) - 1 / (x - sp.I * y),   # zero over Q(i)
+                 1 / (x + 1) + 1 / (x - 1)):
+        assert sp.srepr(cancelled(expr, Domain("Q(x,y)[i]"))) == sp.srepr(sp.cancel(expr))

@@ -128,3 +128,19 @@ def test_cleared_coefficients_by_exact_division_equal_reduced_fractions(monkeypa
         T, E = local_obstruction.cleared_coefficients(num_p, rests["s1"], points["s1"], p_value)
         assert E == flint.fmpq_poly([-1, 0, 1])
         assert all(t * d == n * E**k for k, (t, (n, d)) in enumerate(zip(T, fractions)))
+
+
+def test_taylor_shift_against_expansion_and_truncated():
+    """taylor_shift (synthetic division) against expanding poly(point + zeta) in SymPy; ``terms`` keeps a prefix."""
+    import flint
+    import sympy as sp
+
+    from derivations.sections.local_obstruction import taylor_shift
+
+    zeta = sp.Symbol("zeta")
+    coeffs = [3, -2, 0, 5, 7]                     # 3 - 2 w + 5 w^3 + 7 w^4
+    point = sp.Rational(-2, 3)
+    expected = sp.Poly(sp.expand(sum(c * (point + zeta) ** k for k, c in enumerate(coeffs))), zeta).all_coeffs()[::-1]
+    full = taylor_shift([flint.fmpq_poly([c]) for c in coeffs], flint.fmpq_poly([flint.fmpq(-2, 3)]))
+    assert [flint.fmpq(int(c.p), int(c.q)) for c in expected] == [c[0] for c in full]
+    assert taylor_shift([flint.fmpq_poly([c]) for c in coeffs], flint.fmpq_poly([flint.fmpq(-2, 3)]), terms=2) == full[:2]

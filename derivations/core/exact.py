@@ -183,6 +183,20 @@ def is_identically_zero(expr: sp.Expr, domain: Domain) -> bool:
     return form.is_zero
 
 
+def cancelled(expr: sp.Expr, domain: Domain) -> sp.Expr:
+    """``sympy.cancel(expr)``, without SymPy's gcds when ``expr`` is zero in ``domain``.
+
+    The canonical-domain test (:func:`normal_form`, python-flint) decides zero first; SymPy's ``cancel``
+    (a canonical form too: ``0`` exactly when the expression is zero) runs only on a non-zero expression,
+    so the result is the object ``cancel`` gives in every case.  For identities whose cancelled
+    difference is then certified: r(z; 1/m) = r(z; m) costs 0.36 s in ``cancel``, 0.09 s here.
+    """
+    form = normal_form(expr, domain)
+    if not form.denominator.is_zero() and form.is_zero:
+        return sp.Integer(0)
+    return sp.cancel(expr)
+
+
 def certify_zero(
     log: CertificateLog,
     claim: str,

@@ -49,7 +49,7 @@ from derivations.core.certificates import (
     stopwatch,
 )
 from derivations.core.errata import erratum
-from derivations.core.exact import Domain, Extension, certify_zero
+from derivations.core.exact import Domain, Extension, cancelled, certify_zero
 from derivations.core.result import DerivationResult
 from derivations.core.symbols import g1, g2, g3, p, w1, w2
 from derivations.core.typeset import latex
@@ -112,17 +112,17 @@ def printed_PQ():
     return P, Q
 
 
-def _shifted(poly: sp.Poly, point) -> list:
-    """Coefficients (low to high) of poly(point + zeta), by repeated synthetic division."""
+def _shifted(poly: sp.Poly, point, terms: int) -> list:
+    """The first ``terms`` coefficients (low to high) of poly(point + zeta), by repeated synthetic division."""
     high_to_low = list(poly.rep.to_list()) if hasattr(poly.rep, "to_list") else list(poly.all_coeffs())
-    return taylor_shift(high_to_low[::-1], point, poly.domain.zero)
+    return taylor_shift(high_to_low[::-1], point, poly.domain.zero, terms)
 
 
 def _taylor(num: sp.Poly, den: sp.Poly, point, order: int) -> list:
     """Taylor coefficients of num/den at z = point (Polys over a field containing point)."""
     K = num.domain
-    a = _shifted(num, K.convert(point)) + [K.zero] * (order + 1)
-    b = _shifted(den, K.convert(point)) + [K.zero] * (order + 1)
+    a = _shifted(num, K.convert(point), order + 1) + [K.zero] * (order + 1)
+    b = _shifted(den, K.convert(point), order + 1) + [K.zero] * (order + 1)
     out = []
     for k in range(order + 1):
         value = a[k] - sum((b[j] * out[k - j] for j in range(1, k + 1)), K.zero)
@@ -272,7 +272,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     galois_pmax = max(GALOIS_PMAX, options.pmax)
     rows = []
     # r is invariant under m -> 1/m (it depends on c and d^2 only), which exchanges s3 and s4
-    swapped = sp.cancel((num_e / den_e).subs(m, 1 / m) - num_e / den_e)
+    swapped = cancelled((num_e / den_e).subs(m, 1 / m) - num_e / den_e, Domain("Q(m,p)(z)[i]"))
     c_swap = certify_zero(log, "r(z; 1/m) = r(z; m): the parametrisation's m -> 1/m (d -> -d) exchanges s3 and s4",
                           "eq:rlin", swapped, Domain("Q(m,p)(z)[i]"))
     # the decisions run in w = -i z, where the reduced form is real
@@ -284,7 +284,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                          [num_w - num_w.xreplace({sp.I: -sp.I}), den_w - den_w.xreplace({sp.I: -sp.I}),
                           den_w - sp.expand(expected_den)],
                          Domain("Q(m,p)[w]"))
-    mirrored = sp.cancel((num_w / den_w).subs({w: -w, m: -m}, simultaneous=True) - num_w / den_w)
+    mirrored = cancelled((num_w / den_w).subs({w: -w, m: -m}, simultaneous=True) - num_w / den_w, Domain("Q(m,p)(w)"))
     c_mirror = certify_zero(log, "rt(-w; -m) = rt(w; m): w -> -w maps s1 (w = 1) to s2 (w = -1) with m -> -m, so "
                             "the obstruction at s2 is the one at s1 with m -> -m (zero iff it is)", "eq:rlin",
                             mirrored, Domain("Q(m,p)(w)"))

@@ -39,13 +39,14 @@ ZERO = flint.fmpq_poly([])
 ONE = flint.fmpq_poly([1])
 
 
-def taylor_shift(coeffs: list, point, zero=ZERO) -> list:
+def taylor_shift(coeffs: list, point, zero=ZERO, terms: int | None = None) -> list:
     """Coefficients (low to high, in zeta) of ``sum c_k w^k`` at ``w = point + zeta`` (synthetic division).
 
     Any ring: ``zero`` is its zero (python-flint ``fmpq_poly`` by default, a SymPy domain's elsewhere).
+    ``terms``: only the first ones (each pass of the division yields the next; the first is Horner's value).
     """
     coeffs, out = list(coeffs[::-1]), []
-    while coeffs:
+    while coeffs and (terms is None or len(out) < terms):
         acc, quotient = zero, []
         for c in coeffs:
             acc = acc * point + c
