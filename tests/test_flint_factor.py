@@ -70,3 +70,65 @@ def test_written_out_first_integrals_as_collect_gives_them():
 
 def test_doctests():
     assert doctest.testmod(flint_factor).failed == 0
+
+
+gaussian = st.tuples(st.fractions(min_value=-4, max_value=4, max_denominator=3),
+                     st.fractions(min_value=-4, max_value=4, max_denominator=3))
+
+
+def _gaussian_product(roots, lead) -> list:
+    """Coefficients (constant first, (re, im) pairs) of lead * prod (x - r)."""
+    x = sp.Symbol("x")
+    expr = sp.expand((lead[0] + sp.I * lead[1]) * sp.Mul(*[x - (r[0] + sp.I * r[1]) for r in roots]))
+    return [(sp.Rational(sp.re(c)), sp.Rational(sp.im(c))) for c in sp.Poly(expr, x).all_coeffs()[::-1]], expr
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.lists(gaussian, min_size=0, max_size=3), st.lists(gaussian, min_size=0, max_size=3),
+       gaussian, gaussian)
+def test_gaussian_linear_products_as_sympy(num_roots, den_roots, num_lead, den_lead):
+    from fractions import Fraction
+
+    from derivations.core.flint_factor import factor_gaussian
+
+    if num_lead == (0, 0) or den_lead == (0, 0):
+        return
+    x = sp.Symbol("x")
+    num, num_expr = _gaussian_product(num_roots, num_lead)
+    den, den_expr = _gaussian_product(den_roots, den_lead)
+    as_fractions = [[(Fraction(int(a.p), int(a.q)), Fraction(int(b.p), int(b.q))) for a, b in c] for c in (num, den)]
+    got = factor_gaussian(*as_fractions, x)
+    if den_lead[1] != 0:
+        assert got is None           # left to SymPy (its form of 1/(a + b i) is not canonical)
+        return
+    assert sp.srepr(got) == sp.srepr(sp.factor(num_expr / den_expr, gaussian=True))
+
+
+def test_gaussian_refuses_what_does_not_split():
+    from fractions import Fraction as Q
+
+    from derivations.core.flint_factor import factor_gaussian
+
+    x = sp.Symbol("x")
+    one, zero = (Q(1), Q(0)), (Q(0), Q(0))
+    assert factor_gaussian([(Q(-2), Q(0)), zero, one], [one], x) is None           # x^2 - 2: real irrational roots
+    assert factor_gaussian([one, zero, zero, one], [one], x) is None               # x^3 + 1: (x+1)(x^2-x+1)
+    assert factor_gaussian([zero], [one], x) == 0
+
+
+def test_f_fhat_tables_as_sympy_factors_them():
+    """Every entry of the F / F-hat coefficient tables (odd p <= 7) against SymPy's own factorisation over Q(i)."""
+    from derivations.sections.meromorphic_printed import coefficient_tables, hypergeometric_polynomials, to_sympy
+    from derivations.core.options import BuildOptions
+    from derivations.core.typeset import latex
+
+    xs, ds = sp.symbols("x d")
+    rows = {(r["p"], r["k"]): r for r in coefficient_tables(BuildOptions(pmax=7))["f"]}
+    for p in (1, 3, 5, 7):
+        F, Fhat = hypergeometric_polynomials(p)
+        den2 = sp.Mul(*[(3 + 2 * j) ** 2 * ds**2 + p * p for j in range((p - 1) // 2)])
+        for name, poly in (("F", F), ("Fhat", Fhat)):
+            expanded = sp.Poly(to_sympy(poly), xs)
+            for k in range(expanded.degree() + 1):
+                expected = latex(sp.factor(expanded.coeff_monomial(xs**k) / den2, gaussian=True))
+                assert rows[p, k][name] == expected, (p, k, name)

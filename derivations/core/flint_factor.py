@@ -1,9 +1,10 @@
-"""``sympy.factor`` of a rational function of one variable over Q, computed by python-flint.
+"""``sympy.factor`` of a rational function of one variable over Q or Q(i), computed by python-flint.
 
 Used where the build prints a coefficient in factored form (paper section 6.2, ``eq:p1``,
-``eq:p23``: the written-out P1, P2, P3; section 5.1, ``pol_sol``: the c_j table).  The
-factorisation itself is FLINT's (``fmpz_poly.factor``: Zassenhaus / van Hoeij over Z); only the
-result is turned into a SymPy expression, for the printer.
+``eq:p23``: the written-out P1, P2, P3; section 5.1, ``eq:ghyp`` and ``poly_F2``: the F and F-hat
+coefficient tables, factored over the Gaussian rationals).  The factorisation itself is FLINT's
+(``fmpz_poly.factor``: Zassenhaus / van Hoeij over Z; over Q(i) through the norm, for products of
+linear factors, see below); only the result is turned into a SymPy expression, for the printer.
 
 **Same expression as SymPy.**  ``sympy.factor(N/D)`` factors numerator and denominator over Z
 separately (content with its sign, primitive irreducible factors with positive leading
@@ -12,8 +13,9 @@ exponents.  That normal form is unique, so building it from FLINT's factors give
 SymPy object (``tests/test_flint_factor.py`` compares the two on random and on the build's rational
 functions); the build's outputs are byte-identical (``bench/bench_build_profile.py`` compares trees).
 
-Measured (``tests`` aside, one build): the factorisations of the written-out P1, P2, P3 cost SymPy
-about 1.5 s (``factor`` inside ``collect``); here a few milliseconds plus the conversions.
+Measured (one cold build, one process): the factorisations of the written-out P1, P2, P3 cost SymPy
+about 0.7 s (``factor`` inside ``collect``), the F / F-hat tables 0.6 s (over ``QQ_I``); here 0.1 s
+for both, conversions included.
 """
 from __future__ import annotations
 
@@ -70,3 +72,105 @@ def factor_rational(expr: sp.Expr, x: sp.Symbol) -> sp.Expr:
     """
     num, den = sp.fraction(sp.together(expr))
     return factor_univariate(sp.Poly(num, x).all_coeffs()[::-1], sp.Poly(den, x).all_coeffs()[::-1], x)
+
+
+# --- over the Gaussian rationals Q(i): products of linear factors --------------------------------------
+# python-flint 0.9 factors over Z only.  A polynomial f in Q(i)[x] whose roots all lie in Q(i) (the F and
+# F-hat coefficient tables, section 5.1, eq:ghyp and poly_F2: Pochhammer products) is split through its
+# norm f * conj(f), a polynomial over Z: each root r of f is a root of a factor of the norm of degree 1
+# (r rational) or 2 (r = (-b +- i k)/(2a) with b^2 - 4ac = -k^2), so FLINT's factorisation of the norm
+# lists every candidate and exact division by (x - r) in Q(i) keeps those of f with their multiplicity.
+
+def _g_mul(a: tuple, b: tuple) -> tuple:
+    return (a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0])
+
+
+def _g_div(a: tuple, b: tuple) -> tuple:
+    norm = b[0] * b[0] + b[1] * b[1]
+    return ((a[0] * b[0] + a[1] * b[1]) / norm, (a[1] * b[0] - a[0] * b[1]) / norm)
+
+
+def _divide_linear(coefficients: list, root: tuple) -> tuple[list, tuple]:
+    """(quotient, remainder) of f / (x - root) by synthetic division (coefficients constant first)."""
+    acc, quotient = (Fraction(0), Fraction(0)), []
+    for c in reversed(coefficients):
+        acc = _g_mul(acc, root)
+        acc = (acc[0] + c[0], acc[1] + c[1])
+        quotient.append(acc)
+    remainder = quotient.pop()
+    return quotient[::-1], remainder
+
+
+def _candidate_roots(coefficients: list) -> list | None:
+    """The roots in Q(i) of the norm of f, or None if the norm has an irreducible factor without them."""
+    lcm = math.lcm(*(c.denominator for pair in coefficients for c in pair))
+    real = flint.fmpz_poly([int(c[0] * lcm) for c in coefficients])
+    imaginary = flint.fmpz_poly([int(c[1] * lcm) for c in coefficients])
+    norm = real * real + imaginary * imaginary          # f conj(f) for f = real + i imaginary
+    roots = []
+    for factor, _ in norm.factor()[1]:
+        c = [int(v) for v in factor.coeffs()]
+        if len(c) == 2:
+            roots.append((Fraction(-c[0], c[1]), Fraction(0)))
+        elif len(c) == 3:
+            k = math.isqrt(4 * c[2] * c[0] - c[1] * c[1]) if 4 * c[2] * c[0] > c[1] * c[1] else -1
+            if k < 0 or k * k != 4 * c[2] * c[0] - c[1] * c[1]:
+                return None
+            roots += [(Fraction(-c[1], 2 * c[2]), Fraction(s * k, 2 * c[2])) for s in (1, -1)]
+        else:
+            return None
+    return roots
+
+
+def _linear_factors(coefficients: list) -> tuple[tuple, dict] | None:
+    """(leading coefficient, {root: multiplicity}) of f in Q(i)[x], or None unless f splits over Q(i)."""
+    coefficients = list(coefficients)
+    while coefficients and coefficients[-1] == (0, 0):
+        coefficients.pop()
+    if not coefficients:
+        raise ZeroDivisionError("the zero polynomial has no factorisation")
+    roots = {}
+    candidates = _candidate_roots(coefficients) if len(coefficients) > 1 else []
+    if candidates is None:
+        return None
+    for root in dict.fromkeys(candidates):
+        while len(coefficients) > 1:
+            quotient, remainder = _divide_linear(coefficients, root)
+            if remainder != (0, 0):
+                break
+            coefficients, roots[root] = quotient, roots.get(root, 0) + 1
+    return (coefficients[0], roots) if len(coefficients) == 1 else None
+
+
+def _gaussian(value: tuple) -> sp.Expr:
+    return sp.Rational(value[0].numerator, value[0].denominator) + sp.I * sp.Rational(value[1].numerator,
+                                                                                      value[1].denominator)
+
+
+def factor_gaussian(numerator: list, denominator: list, x: sp.Symbol) -> sp.Expr | None:
+    """``sympy.factor(N(x)/D(x), gaussian=True)`` when N and D split into linear factors over Q(i) and D's
+    leading coefficient is real, else None.
+
+    N, D: coefficients (constant first) as pairs ``(real, imaginary)`` of Fractions.  The result is
+    SymPy's object: the quotient of the leading coefficients times monic factors ``x - r``.
+
+    >>> import sympy as sp
+    >>> from fractions import Fraction as Q
+    >>> x = sp.Symbol("x")
+    >>> factor_gaussian([(Q(1), Q(0)), (Q(0), Q(0)), (Q(1), Q(0))], [(Q(0), Q(0)), (Q(3), Q(0))], x)
+    (x - I)*(x + I)/(3*x)
+    >>> factor_gaussian([(Q(2), Q(0)), (Q(0), Q(0)), (Q(1), Q(0))], [(Q(1), Q(0))], x) is None   # x^2 + 2
+    True
+    """
+    if all(c == (0, 0) for c in numerator):
+        return sp.Integer(0)
+    num, den = _linear_factors(numerator), _linear_factors(denominator)
+    if num is None or den is None or den[0][1] != 0:
+        # (a non-real leading coefficient of D: SymPy keeps 1/(a + b i) as an unevaluated product, a form
+        # not worth imitating; the tables' denominators are real)
+        return None
+    exponents = dict(num[1])
+    for root, k in den[1].items():
+        exponents[root] = exponents.get(root, 0) - k
+    product = sp.Mul(*[(x - _gaussian(root)) ** k for root, k in exponents.items()])
+    return _keep_coeff(_gaussian(_g_div(num[0], den[0])), product)

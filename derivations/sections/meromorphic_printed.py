@@ -8,6 +8,8 @@ out in tanh/sech for the document, and tabulated (the coefficients c_j of F1 and
 """
 from __future__ import annotations
 
+from fractions import Fraction
+
 import mpmath
 import sympy as sp
 
@@ -19,6 +21,7 @@ from derivations.core.certificates import (
     stopwatch,
 )
 from derivations.core.errata import erratum
+from derivations.core.flint_factor import factor_gaussian
 from derivations.core.result import DerivationResult
 from derivations.core.typeset import latex
 from derivations.sections.meromorphic_ring import (
@@ -210,6 +213,18 @@ def written_out(basis: Basis) -> list:
     return rows
 
 
+def _gaussian_coefficients(poly) -> dict:
+    """{k: coefficients (constant first, pairs (real, imaginary) of Fractions) of x^k} of a polynomial in
+    (x, d, i) over Q, i^2 = -1."""
+    out = {}
+    for (kx, kd, ki), c in zip(poly.monoms(), poly.coeffs()):
+        value = Fraction(int(c.p), int(c.q)) * (-1 if ki % 4 >= 2 else 1)
+        column = out.setdefault(int(kx), {})
+        re, im = column.get(int(kd), (Fraction(0), Fraction(0)))
+        column[int(kd)] = (re, im + value) if ki % 2 else (re + value, im)
+    return {k: [column.get(j, (Fraction(0), Fraction(0))) for j in range(max(column) + 1)] for k, column in out.items()}
+
+
 def coefficient_tables(options) -> dict:
     """c_j of F1 (odd p <= 15) and the coefficients of F(a+,b;c+;-y), Fhat (odd p <= 7)."""
     xs, ds = sp.symbols("x d")
@@ -224,13 +239,20 @@ def coefficient_tables(options) -> dict:
             F, Fhat = hypergeometric_polynomials(p)
             J = (p - 1) // 2
             den2 = sp.Mul(*[(3 + 2 * j) ** 2 * ds**2 + p * p for j in range(J)])
-            Fs, Fh = sp.Poly(to_sympy(F), xs), sp.Poly(to_sympy(Fhat), xs)
-            # over QQ_I, SymPy's Gaussian rationals, not the generic algebraic field Q(i): the same
-            # factorisation (checked on every entry) at half the cost
-            for kk in range(max(Fs.degree(), Fh.degree()) + 1):
-                f_rows.append({"p": p, "k": kk,
-                               "F": latex(sp.factor(Fs.coeff_monomial(xs**kk) / den2, gaussian=True)),
-                               "Fhat": latex(sp.factor(Fh.coeff_monomial(xs**kk) / den2, gaussian=True))})
+            # factored over Q(i) (SymPy's factor(..., gaussian=True), the object it gives): every entry
+            # splits into linear factors, found by FLINT from its norm (derivations.core.flint_factor)
+            den_coefficients = [(Fraction(int(c)), Fraction(0)) for c in sp.Poly(den2, ds).all_coeffs()[::-1]]
+            f_by_power, fhat_by_power = _gaussian_coefficients(F), _gaussian_coefficients(Fhat)
+            for kk in range(max(max(f_by_power), max(fhat_by_power)) + 1):
+                row = {"p": p, "k": kk}
+                for name, by_power in (("F", f_by_power), ("Fhat", fhat_by_power)):
+                    numerator = by_power.get(kk, [(Fraction(0), Fraction(0))])
+                    factored = factor_gaussian(numerator, den_coefficients, ds)
+                    if factored is None:   # not a product of linear factors over Q(i): SymPy's general route
+                        factored = sp.factor(sum((re + sp.I * im) * ds**j for j, (re, im) in enumerate(numerator))
+                                             / den2, gaussian=True)
+                    row[name] = latex(factored)
+                f_rows.append(row)
     return {"f1": f1_rows, "f": f_rows}
 
 
