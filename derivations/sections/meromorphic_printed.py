@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+import flint
 import mpmath
 import sympy as sp
 
@@ -170,20 +171,37 @@ def compare_printed_examples(log: CertificateLog, result: DerivationResult, base
 TANH, SECH = sp.tanh(sp.Symbol("t")), sp.sech(sp.Symbol("t"))
 
 
-def numerator_to_tanh_sech(expr, p: int):
-    """N(x)/(1+x^2)^p as a polynomial in tanh t, sech t (degree <= 1 in sech after S^2 = 1 - T^2)."""
-    xs = sp.Symbol("x")
-    Tn, Sn = sp.symbols("T S")
-    poly = sp.Poly(sp.expand(expr), xs)
-    total = 0
-    for (m,), coefficient in poly.terms():
-        if m >= p:
-            total += coefficient * (1 + Tn) ** (m - p) * Sn ** (2 * p - m)
-        else:
-            total += coefficient * (1 - Tn) ** (p - m) * Sn**m
-    total = sp.rem(sp.expand(total / 2**p), Sn**2 + Tn**2 - 1, Sn)
-    collected = sp.collect(sp.expand(total), Sn, evaluate=False)
-    return sum(sp.factor(v) * k for k, v in collected.items()).subs({Tn: TANH, Sn: SECH})
+TS_CTX = flint.fmpq_mpoly_ctx.get(("T", "S", "d"), "lex")
+
+
+def numerator_to_tanh_sech(numerator, p: int, scale: sp.Expr):
+    """``N(x)/(1+x^2)^p * scale`` as a polynomial in tanh t, sech t (degree <= 1 in sech after S^2 = 1 - T^2).
+
+    ``numerator``: N in Q[x, d] (python-flint, the basis ring's variables (x, d, i), free of i);
+    ``scale``: a SymPy factor free of x.  With x = e^t, ``x^m/(1+x^2)^p = ((1+T)/2)^(m-p) ... `` gives
+    ``2^-p (1+T)^(m-p) S^(2p-m)`` (m >= p) or ``2^-p (1-T)^(p-m) S^m``; the sum is reduced modulo
+    S^2 + T^2 - 1 and split as P0 + S P1, all in python-flint; each part is printed factored by SymPy.
+    """
+    T, S, dd = TS_CTX.gens()
+    one = TS_CTX.constant(1)
+    total = TS_CTX.constant(0)
+    for (m, kd, ki), c in zip(numerator.monoms(), numerator.coeffs()):
+        if ki:
+            raise ValueError("the numerator must be free of i")
+        term = c * dd**kd
+        total += term * ((1 + T) ** (m - p) * S ** (2 * p - m) if m >= p else (1 - T) ** (p - m) * S**m)
+    parts = [TS_CTX.constant(0), TS_CTX.constant(0)]      # P0 + S P1, using S^2 = 1 - T^2
+    for (a, b, kd), c in zip(total.monoms(), total.coeffs()):
+        parts[b % 2] += c * T**a * dd**kd * (one - T * T) ** (b // 2)
+    Tn, Sn, ds = sp.symbols("T S d")
+    factored = 0
+    for key, part in zip((1, Sn), parts):
+        if part.is_zero():
+            continue
+        value = sp.Add(*(sp.Rational(int(c.p), int(c.q)) * Tn**int(a) * ds**int(kd)
+                         for (a, _, kd), c in zip(part.monoms(), part.coeffs())))
+        factored += sp.factor(value * scale / 2**p) * key
+    return factored.subs({Tn: TANH, Sn: SECH})
 
 
 def real_imaginary(poly):
@@ -198,14 +216,14 @@ def written_out(basis: Basis) -> list:
     cs = sp.Symbol("c")
     p = basis.p
     scale = to_sympy(basis.scale_real)
-    first = [numerator_to_tanh_sech(to_sympy(m) / scale * f, p) for m, f in zip(basis.real.M, (1, 1 / cs, 1 / cs))]
-    kr, ki = (to_sympy(v) for v in real_imaginary(basis.k))
-    norm = sp.expand(kr**2 + ki**2)
+    first = [numerator_to_tanh_sech(m, p, f / scale) for m, f in zip(basis.real.M, (1, 1 / cs, 1 / cs))]
+    kr, ki = real_imaginary(basis.k)
+    norm = to_sympy(kr * kr + ki * ki)
     R, Q = [], []
     for m, f in zip(basis.complex_.M, (cs, 1, 1)):
-        A, B = (to_sympy(v) for v in real_imaginary(m))
-        R.append(numerator_to_tanh_sech(sp.expand((A * kr + B * ki) * f) / norm, p))
-        Q.append(numerator_to_tanh_sech(sp.expand((B * kr - A * ki) * f) / norm, p))
+        A, B = real_imaginary(m)
+        R.append(numerator_to_tanh_sech(A * kr + B * ki, p, f / norm))
+        Q.append(numerator_to_tanh_sech(B * kr - A * ki, p, f / norm))
     phase = r"\tfrac{%d t}{d}" % p if p > 1 else r"\tfrac{t}{d}"
     rows = [(r"\gamma^{(1)}_{%d}" % (k + 1), x) for k, x in enumerate(first)]
     rows.append(r"\gamma^{(2)}=\cos(%s)\,R-\sin(%s)\,Q,\quad \gamma^{(3)}=\sin(%s)\,R+\cos(%s)\,Q" % ((phase,) * 4))
