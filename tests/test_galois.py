@@ -144,3 +144,15 @@ def test_taylor_shift_against_expansion_and_truncated():
     full = taylor_shift([flint.fmpq_poly([c]) for c in coeffs], flint.fmpq_poly([flint.fmpq(-2, 3)]))
     assert [flint.fmpq(int(c.p), int(c.q)) for c in expected] == [c[0] for c in full]
     assert taylor_shift([flint.fmpq_poly([c]) for c in coeffs], flint.fmpq_poly([flint.fmpq(-2, 3)]), terms=2) == full[:2]
+
+
+def test_proposition_5_4_degrees():
+    """Every admissible exponent choice for even p: the (d-dependent) exponents at s0 and s5 cancel only with
+    equal signs, and then deg R = -sum rho = -(p + 2 + s3 + s4) with s3, s4 = +-1 (worked by hand from eq:Deltai):
+    {-(p + 4), -(p + 2), -p}, all negative."""
+    exports = derive(BuildOptions(pmax=4), ["galois"]).results["galois"].exports
+    rows = exports["prop_rows"]
+    assert [r["p"] for r in rows] == list(range(2, exports["galois_pmax"] + 1, 2))
+    for row in rows:
+        p = row["p"]
+        assert row["degrees"] == [-(p + 4), -(p + 2), -p]

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+from fractions import Fraction
 
 import flint
 import sympy as sp
@@ -320,13 +321,14 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         with stopwatch() as elapsed:
             ns = set()
             for s0, s5, s3, s4 in itertools.product((1, -1), repeat=4):
-                rho = {"s0": sp.Rational(1, 2) * (1 + s0 * sp.I * p_value / sp.Symbol("d")),
-                       "s5": -sp.Rational(1, 2) * (1 + s5 * sp.I * p_value / sp.Symbol("d")),
-                       "s1": sp.Rational(1 + p_value, 2), "s2": sp.Rational(1 + p_value, 2),
-                       "s3": sp.Rational(1 + 2 * s3, 2), "s4": sp.Rational(1 + 2 * s4, 2)}
-                n = -sum(rho.values())
-                if n.is_integer:
-                    ns.add(int(n))
+                # each exponent as (rational part, coefficient of i p/d): rho_s0 = (1 + s0 i p/d)/2, ...
+                rho = {"s0": (Fraction(1, 2), Fraction(s0, 2)), "s5": (Fraction(-1, 2), Fraction(-s5, 2)),
+                       "s1": (Fraction(1 + p_value, 2), 0), "s2": (Fraction(1 + p_value, 2), 0),
+                       "s3": (Fraction(1 + 2 * s3, 2), 0), "s4": (Fraction(1 + 2 * s4, 2), 0)}
+                rational, imaginary = (-sum(part) for part in zip(*rho.values()))
+                # n = -sum rho is an integer for the d > 0 at hand only if its part i p/d (p != 0) cancels
+                if imaginary == 0 and rational.denominator == 1:
+                    ns.add(int(rational))
             ok = bool(ns) and max(ns) < 0
         cert = log.record(Certificate(
             f"p = {p_value}: every admissible exponent choice gives deg R = -sum rho_i < 0 (no exponential solution)",
