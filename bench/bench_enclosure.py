@@ -28,7 +28,7 @@ sys.path.insert(0, str(ROOT / "bench"))
 from machine_info import cpu_name  # noqa: E402
 from timing import median_seconds  # noqa: E402
 
-from derivations.sections import scattering, scattering_balls  # noqa: E402
+from derivations.sections import scattering_balls, scattering_evidence  # noqa: E402
 from derivations.core.certificates import CertificateLog  # noqa: E402
 from derivations.sections.poisson_taylor import ss_through  # noqa: E402
 from suslov.simulator.body import make_body  # noqa: E402
@@ -71,17 +71,17 @@ def grid_rows():
     old_d = ("0.05", "0.5", "2", "50")
 
     def old():
-        saved = scattering.GRID_D
-        scattering.GRID_D = old_d
+        saved = scattering_evidence.GRID_D
+        scattering_evidence.GRID_D = old_d
         try:
-            scattering._grid_certificate(CertificateLog(derivation="bench"))
+            scattering_evidence.fast_rotation_certificate(CertificateLog(derivation="bench"))
         finally:
-            scattering.GRID_D = saved
+            scattering_evidence.GRID_D = saved
 
     def new():
         log = CertificateLog(derivation="bench")
         scattering_balls.grid(log)
-        scattering._grid_certificate(log)
+        scattering_evidence.fast_rotation_certificate(log)
 
     return [{"body": "build grid", "route": "old: 24 points, 36-digit evidence", "seconds": median_seconds(old, 2),
              "width": None, "rigorous": False},

@@ -118,9 +118,9 @@ def test_gaussian_refuses_what_does_not_split():
 
 def test_f_fhat_tables_as_sympy_factors_them():
     """Every entry of the F / F-hat coefficient tables (odd p <= 7) against SymPy's own factorisation over Q(i)."""
-    from derivations.sections.meromorphic_printed import coefficient_tables, hypergeometric_polynomials, to_sympy
     from derivations.core.options import BuildOptions
     from derivations.core.typeset import latex
+    from derivations.sections.meromorphic_printed import coefficient_tables, hypergeometric_polynomials, to_sympy
 
     xs, ds = sp.symbols("x d")
     rows = {(r["p"], r["k"]): r for r in coefficient_tables(BuildOptions(pmax=7))["f"]}

@@ -15,7 +15,8 @@ from derivations.sections.residue import gauge_transformed_pole
 S_PRINTED = sp.Matrix([[-sp.I * c / d, -sp.I / c, sp.I * c / d], [1 / d, 1, -1 / d], [1, 0, 1]])
 
 
-def by_series(p: int, d_value=sp.Rational(3, 4), c_value=sp.Rational(5, 4)):
+def by_series(p: int):
+    d_value, c_value = sp.Rational(3, 4), sp.Rational(5, 4)     # c = sqrt(d^2 + 1), rational here
     tau = sp.Symbol("tau")
     w1 = sp.Integer(p) / d_value * sp.coth(tau)                   # tanh(i pi/2 + tau) = coth(tau)
     w2 = -sp.Integer(p) / d_value * c_value * (-sp.I) * sp.csch(tau)   # sech(i pi/2 + tau) = -i csch(tau)

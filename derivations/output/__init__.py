@@ -1,6 +1,6 @@
-"""The build's stages after the derivations: pipeline, rendering, round trip, documents, diff.
+"""The build's command line and its stages after the derivations: pipeline, rendering, round trip, documents, diff.
 
-``pipeline`` runs the registry's derivations and writes the outputs (crash-safely, through
+``cli`` is ``python build_formulas.py`` (that file only imports it when the build runs); ``pipeline`` runs the registry's derivations and writes the outputs (crash-safely, through
 ``suslov.outdir``); ``render`` and ``public_api`` feed the templates; ``roundtrip`` and ``float_paths``
 certify the emitted module as a user imports it; ``pdf`` compiles, ``diff`` compares two trees;
 ``estimate`` predicts the build's time.

@@ -29,20 +29,15 @@ monodromy group".  Method:
 from __future__ import annotations
 
 import sympy as sp
-from flint import acb_mat
 
 from derivations.core import paper
-from derivations.core.certificates import (
-    Certificate,
-    CertificateLog,
-    Outcome,
-    stopwatch,
-)
+from derivations.core.certificates import Certificate, CertificateLog, Outcome
 from derivations.core.differential import S, T
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
 from derivations.core.symbols import I11, I13, I22, I23, w1, w2
+from derivations.sections.fuchsian_balls import DIGITS, monodromy_summary
 from derivations.sections.model import R_EXT
 
 NAME = "fuchsian"
@@ -53,37 +48,10 @@ x, j, lam = sp.symbols("x j lambda")
 I_EXT = Extension(j, sp.Integer(-1), "j = i = sqrt(-1)")
 FUCHS = Domain("Q(I11,I22,I13,I23,x)[r,i]/(r^2-I11 I22, i^2+1)", (R_EXT, I_EXT))
 PLAIN = Domain("Q(w1,w2,w3,lambda)")
-DIGITS = 30
 # (label, I11, I22, I13, I23, what the case is): I13 = 0 with odd, even and non-integer p, and two general bodies
 BODIES = (("odd p = 1", "2", "1", "0", "-1"), ("odd p = 3", "2", "1", "0", "-1/3"), ("even p = 2", "2", "1", "0", "-1/2"),
           ("non-integer p = 5/2", "2", "1", "0", "-2/5"), ("general", "5/4", "1", "3/10", "-1/2"),
           ("general", "2", "1", "3/10", "-1/5"), ("odd p = 1, I23 = 0 (eq:lina)", "1", "2", "-1", "0"))
-
-
-def _math(value) -> str:
-    """A ball's midpoint to 4 digits as LaTeX mathematics (python-flint prints ``1.000j``)."""
-    text = value.str(4, radius=False).replace(" ", "")
-    return text.replace("j", "i")
-
-
-def monodromy_summary(body: tuple) -> dict:
-    """The run-time :func:`suslov.validated.monodromy` of one body (I11, I22, I13, I23) at ``DIGITS``, as
-    plain data (balls do not pickle): verdict, certificates, the table's entries, and whether the loop
-    about x = i excludes the identity.  A top-level function: the build runs it in a worker process,
-    started before the symbolic derivations (``PREFETCH``)."""
-    from suslov.validated import monodromy   # python-flint balls; the run-time code, exactly as users call it
-
-    with stopwatch() as elapsed:
-        mono = monodromy(*body, digits=DIGITS)
-    identity = acb_mat([[1, 0, 0], [0, 1, 0], [0, 0, 1]])
-    at_i = mono.matrices.get("x=i")
-    return {"verdict": mono.verdict, "liouvillian": mono.liouvillian, "radius": mono.radius,
-            "digits": mono.digits + mono.guard, "certificates": [tuple(c) for c in mono.certificates],
-            "exponents": {name: _math(mono.exponents[name][1]) for name in ("x=0", "x=i")},
-            "not_identity_at_i": at_i is not None and any(not (at_i[r, c] - identity[r, c]).contains(0)
-                                                          for r in range(3) for c in range(3)),
-            "re_trace_at_i": at_i.trace().real.str(10, radius=False) if at_i is not None else "",
-            "seconds": elapsed[0]}
 
 
 # the monodromy of the representative bodies needs no other result: started with the build (CertificateLog.prefetch)

@@ -245,8 +245,9 @@ def _gaussian_coefficients(poly) -> dict:
 
 def coefficient_tables(options) -> dict:
     """c_j of F1 (odd p <= 15) and the coefficients of F(a+,b;c+;-y), Fhat (odd p <= 7)."""
-    xs, ds = sp.symbols("x d")
     from derivations.sections.first_integrals import hypergeometric_coefficient
+
+    ds = sp.Symbol("d")
     f1_rows, f_rows = [], []
     for p in options.odd_p_values():
         if p > 15:

@@ -34,8 +34,8 @@ arithmetic from ``t = -oo`` to ``+oo`` (``suslov.kernel.enclosure``: limit serie
 remainders at the ends, Taylor steps with Cauchy bounds in between) on a grid of (p, d) with
 non-integer, odd and even p and d in {0.5, 2, 50}: G1(0) and cos(Delta psi) within 1e-18 of the closed
 form is *proved* at every point; the Gamma-function value and the lemma ``gam_0`` are enclosed too.
-The fast-rotation column d = 0.05 stays a 36-digit spot check (``derivations.sections.poisson_taylor``:
-Frobenius series at the ends, Taylor steps in between), labelled evidence.
+The fast-rotation column d = 0.05 stays a 36-digit spot check (``derivations.sections.scattering_evidence``
+with ``poisson_taylor``: Frobenius series at the ends, Taylor steps in between), labelled evidence.
 
 Stable evaluation (emitted): with ``x = pi |p| / (2d)``, ``y = pi p / 2``,
 ``Delta psi = 2 atan2(sqrt(tanh^2 x + sin^2 y sech^2 x), |cos y| sech x)``
@@ -43,16 +43,10 @@ Stable evaluation (emitted): with ``x = pi |p| / (2d)``, ``y = pi p / 2``,
 """
 from __future__ import annotations
 
-import mpmath
 import sympy as sp
 
 from derivations.core import paper
-from derivations.core.certificates import (
-    Certificate,
-    CertificateLog,
-    Outcome,
-    stopwatch,
-)
+from derivations.core.certificates import CertificateLog, Outcome
 from derivations.core.emit import Emitted
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
@@ -60,7 +54,7 @@ from derivations.core.result import DerivationResult
 from derivations.core.symbols import I11, I13, I22, I23, I33, d, g1, g2, g3, p, w1, w2
 from derivations.sections import scattering_balls
 from derivations.sections.model import I33_FROM_DET
-from derivations.sections.poisson_taylor import ss_through
+from derivations.sections.scattering_evidence import GRID_D, GRID_DIGITS, GRID_DPS, GRID_P, numeric_certificates
 from derivations.sections.special_case import I_DOMAIN
 
 NAME = "scattering"
@@ -79,13 +73,6 @@ EXPONENTIALS = Domain("Q(E, H, sigma1)[i]/(i^2+1)", (Extension(I_UNIT, -1, "i"),
 HALF_ANGLE = Domain("Q(shx, sy)[chx, cy]/(chx^2 - shx^2 - 1, cy^2 + sy^2 - 1)",
                     (Extension(chx, 1 + shx**2, "cosh x"), Extension(cy, 1 - sy**2, "cos y")))
 
-# Grid of the integration check: non-integer, odd and even p; small and large d.
-GRID_P = ("0.5", "1", "2", "2.5", "3", "7/3")
-GRID_D = ("0.05",)   # fast rotation (|omega| up to 70): evidence; d = 0.5, 2, 50 are enclosed (scattering_balls)
-GRID_DPS = 36
-GRID_DIGITS = 30
-
-
 def _f(g, w):
     return sp.Matrix(g).cross(sp.Matrix([w[0], w[1], 0]))
 
@@ -93,45 +80,6 @@ def _f(g, w):
 def _sin_pi(exp_i_pi_w):
     """sin(pi w) from e^{i pi w}."""
     return (exp_i_pi_w - 1 / exp_i_pi_w) / (2 * I_UNIT)
-
-
-def closed_form_half_cos(p_value, d_value):
-    """cos(Delta psi/2) = |cos(pi p/2)| / cosh(pi p/(2d)) in mpmath (current precision)."""
-    return abs(mpmath.cospi(p_value / 2)) / mpmath.cosh(mpmath.pi * p_value / (2 * d_value))
-
-
-def _grid_certificate(log: CertificateLog) -> Certificate:
-    worst_g0 = worst_cos = mpmath.mpf(0)
-    with stopwatch() as elapsed:
-        with mpmath.workdps(GRID_DPS):
-            for ps in GRID_P:
-                for ds in GRID_D:
-                    pv, dv = mpmath.mpf(sp.Rational(ps).p) / sp.Rational(ps).q, mpmath.mpf(ds)
-                    a = pv / dv
-                    u, v = [a, mpmath.mpf(0)], [mpmath.mpf(0), -a * mpmath.sqrt(dv**2 + 1)]
-                    g0, along = ss_through(u, v, GRID_DPS)
-                    closed_g0 = -mpmath.cospi(pv / 2) / mpmath.cosh(mpmath.pi * pv / (2 * dv))
-                    worst_g0 = max(worst_g0, abs(g0[0] - closed_g0))
-                    worst_cos = max(worst_cos, abs(-along - (2 * closed_form_half_cos(pv, dv) ** 2 - 1)))
-    points = len(GRID_P) * len(GRID_D)
-    ok = max(worst_g0, worst_cos) <= mpmath.mpf(10) ** (-GRID_DIGITS)
-    detail = (f"{points} points p in {{{', '.join(GRID_P)}}} x d in {{{', '.join(GRID_D)}}}; "
-              f"max |G1(0) - closed| = {mpmath.nstr(worst_g0, 3)}, max |cos dpsi - closed| = {mpmath.nstr(worst_cos, 3)}")
-    return log.record(Certificate(
-        "the ss solution integrated from t = -oo to +oo gives G1(0) = -cos(pi p/2)/cosh(pi p/(2d)) and "
-        "cos(Delta psi) = -G1(+oo) = 2 cos^2(pi p/2)/cosh^2(pi p/(2d)) - 1 (to 1e-30)", "Theorem 5.2",
-        f"Frobenius series at t = +-oo + Taylor steps in mpmath at {GRID_DPS} digits (evidence, not proof)",
-        Outcome.PASS if ok else Outcome.FAIL, elapsed[0], points, detail))
-
-
-def numeric_certificates(name: str) -> list:
-    """The numeric certificates of Theorem 5.2 that need no other result, recorded in a private log and
-    handed over (a top-level function: the build starts it in a worker process with the build,
-    ``PREFETCH``): "enclosed grid" (the ball enclosures and the lemma gam_0, ``scattering_balls``) or
-    "fast rotation" (the d = 0.05 column, 36-digit evidence)."""
-    private = CertificateLog()
-    {"enclosed grid": scattering_balls.grid, "fast rotation": _grid_certificate}[name](private)
-    return private.handed_over()
 
 
 PREFETCH = (("scattering: numeric checks", ["enclosed grid", "fast rotation"], numeric_certificates),)

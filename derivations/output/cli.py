@@ -1,0 +1,335 @@
+"""The build's command line (``python build_formulas.py``): derive -> certify -> render into generated/.
+
+``build_formulas.py`` at the repository's top is only the entry point: it imports this module when
+the build runs, not at import time, so the worker processes the build spawns (``suslov.executor``,
+start method ``spawn``, which re-imports the main script as ``__mp_main__``) start without SymPy and
+the derivations unless their work needs them: the numeric certificates prefetched by a cold build
+(monodromy, enclosures) import python-flint and mpmath only (about 0.8 s less per worker).
+
+Options, outputs and exit status: ``build_formulas.py``'s docstring and ``docs/build.md``.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import sys
+import tempfile
+from pathlib import Path
+
+from derivations.core.cache import TreeCache, build_key
+from derivations.core.certificates import CertificationFailure
+from derivations.core.options import PMAX_LIMIT, BuildOptions
+from derivations.output.estimate import Calibration, estimate_seconds, predicted_seconds
+from derivations.output.pdf import PdfError, compile_pdfs, document_report
+from derivations.output.pipeline import (
+    GENERATED,
+    ROOT,
+    Progress,
+    claim_output,
+    compare_trees,
+    derive,
+    install_tree,
+    is_byproduct,
+    summary,
+    write_atomically,
+)
+from derivations.registry import DERIVATIONS
+from suslov.executor import SchedulerError, check_reachable, scheduler_address
+from suslov.outdir import OutputRefused
+
+
+def _pmax(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--pmax {text!r}: not an integer") from None
+    if not 1 <= value <= PMAX_LIMIT:
+        raise argparse.ArgumentTypeError(f"--pmax {value}: must be between 1 and {PMAX_LIMIT}")
+    return value
+
+
+def plain_title(title: str) -> str:
+    """A derivation's TeX title as terminal text: "$I_{13}=0$" -> "I13=0", "$\\omega(t)$" -> "omega(t)"."""
+    return re.sub(r"[${}_]", "", title).replace("\\", "")
+
+
+class _OneLineErrors(argparse.ArgumentParser):
+    """Bad input gets one clear line (which option, which value, why), exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
+
+
+ESTIMATE_FROM = 31   # print the time estimate before building beyond this pmax
+NO_CACHE_ENV = "SUSLOV_NO_CACHE"
+
+
+def parser() -> argparse.ArgumentParser:
+    ap = _OneLineErrors(
+        prog="build_formulas.py",
+        description="Derive, certify and render the formulas of the Suslov problem.",
+        epilog="Derivations: " + ", ".join(f"{n} ({plain_title(m.TITLE)})" for n, m in DERIVATIONS.items()),
+    )
+    ap.add_argument("--pmax", type=_pmax, default=BuildOptions().pmax,
+                    help=f"largest p for the per-p tables, 1..{PMAX_LIMIT} (default %(default)s); tables "
+                         "of odd-p objects stop at the largest odd p <= pmax, even-p tables at the largest even one")
+    ap.add_argument("--only", nargs="+", metavar="NAME",
+                    help="run only these derivations (and what they require); writes nothing unless --out is given")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="output directory (default: generated/ for a full build)")
+    ap.add_argument("--install", action="store_true",
+                    help="write into the per-user store (suslov.loader.store_dir()/pmax-N, where "
+                         "suslov.load_formulas(pmax=N) finds it) instead of generated/: any p range without touching "
+                         "the checkout")
+    ap.add_argument("--check", action="store_true",
+                    help="compare the output directory with the build these sources and options give (from the "
+                         "certificate cache when an entry matches, else rebuilt in a temporary directory; with "
+                         "--no-cache always rebuilt) and exit 3 if it differs")
+    ap.add_argument("--verify", type=Path, metavar="DIR", default=None,
+                    help="certify the generated module in DIR (the committed generated/ or a copy) against the "
+                         "derivations without rewriting anything: exit 0, or 1 naming the first discrepancy; "
+                         "pmax is read from DIR/certificates.json")
+    ap.add_argument("--pdf", nargs="?", type=Path, const=ROOT / "build" / "pdf", default=None, metavar="OUTDIR",
+                    help="after writing, compile the LaTeX documents (formulas, certificates) with pdflatex (two passes) into OUTDIR "
+                         "(default build/pdf/, outside the tracked tree); generated/ gets no by-products")
+    ap.add_argument("--diff", metavar="OLD", default=None,
+                    help="compare OLD (a git revision or a generated directory) with generated/ (or --out DIR), "
+                         "without rebuilding: list the formulas, tables, certificates and errata that changed and "
+                         "write a latexdiff PDF of the formulas document into build/diff/ (needs latexdiff)")
+    ap.add_argument("--jobs", type=_jobs, default=None, metavar="N",
+                    help="worker processes for the per-p certificates (default: all cores; 1: none); the outputs "
+                         "are identical whatever N")
+    ap.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="send the per-p certificates to a dask.distributed scheduler (tcp://host:port; default "
+                         "$SUSLOV_SCHEDULER) instead of local processes")
+    ap.add_argument("--no-cache", action="store_true",
+                    help="recompute every certificate (default: reuse results whose sources, library versions and "
+                         "options are unchanged, from $SUSLOV_CACHE_DIR or ~/.cache/suslov-certified; also "
+                         f"${NO_CACHE_ENV}=1)")
+    ap.add_argument("--quiet", action="store_true", help="no progress display and no certificate summary")
+    return ap
+
+
+def _jobs(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value}: must be at least 1")
+    return value
+
+
+def verify_tree(directory: Path, pmax: int | None, quiet: bool) -> int:
+    """--verify DIR: derive what the module needs, then run the round trip on DIR's module."""
+    from derivations.output.pipeline import MODULE_NEEDS
+    from derivations.output.roundtrip import verify
+
+    if not (directory / "suslov_formulas.py").is_file():
+        print(f"build_formulas.py: --verify {directory}: no suslov_formulas.py there", file=sys.stderr)
+        return 2
+    try:   # a tree whose certificates cannot be read is refused, whatever the flags
+        document = json.loads((directory / "certificates.json").read_text(encoding="utf-8"))
+        stated = document["pmax"]
+        if not isinstance(stated, int) or not isinstance(document["certificates"], list):
+            raise ValueError("pmax or certificates of the wrong type")
+    except (OSError, ValueError, KeyError, TypeError) as error:
+        print(f"build_formulas.py: --verify {directory}: certificates.json cannot be read ({error}); a tree without "
+              "its certificates is not verified", file=sys.stderr)
+        return 1
+    if pmax is None:
+        pmax = stated
+    try:
+        build = derive(BuildOptions(pmax=pmax), list(MODULE_NEEDS), Progress(quiet=quiet))
+    except CertificationFailure as failure:
+        print(f"build_formulas.py: {failure}", file=sys.stderr)
+        return 1
+    problem = verify(build, directory)
+    if problem:
+        print(f"build_formulas.py: --verify {directory}: {problem}", file=sys.stderr)
+        return 1
+    print(f"--verify: {directory / 'suslov_formulas.py'} reproduces the certified objects (pmax = {pmax}): "
+          "every emitted formula, every exact core for every p, every float path within its stated bound")
+    return 0
+
+
+def diff_command(old: str, new: Path) -> int:
+    """--diff OLD: the change list, then the latexdiff PDF (exit 1 with the reason if it cannot be made)."""
+    from derivations.output.diff import DiffError, diff_trees
+
+    if not (new / "suslov_formulas.tex").is_file():
+        print(f"build_formulas.py: --diff: {new} has no suslov_formulas.tex (build first)", file=sys.stderr)
+        return 2
+    try:
+        pdf = diff_trees(old, new, ROOT, ROOT / "build" / "diff")
+    except DiffError as error:
+        print(f"build_formulas.py: --diff: {error}", file=sys.stderr)
+        return 2 if "neither a directory" in str(error) or "directory without" in str(error) else 1
+    print(f"wrote {pdf} and {pdf.with_name('certificates-diff.pdf').name} (latexdiff of the formulas and the "
+          "certificates documents: deletions struck out, additions underlined)")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = parser()
+    args = ap.parse_args(argv)
+    unknown = [n for n in (args.only or []) if n not in DERIVATIONS]
+    if unknown:
+        ap.error(f"--only {unknown[0]!r}: unknown derivation (known: {', '.join(DERIVATIONS)})")
+    if args.check and args.only:
+        ap.error("--check compares a full build; it cannot be combined with --only")
+    if args.pdf is not None and (args.check or (args.only and args.out is None)):
+        ap.error("--pdf compiles the tree a build writes; it cannot be combined with --check or --only without --out")
+    if args.diff is not None:
+        if args.only or args.check or args.verify or args.pdf:
+            ap.error("--diff OLD compares two existing trees; it cannot be combined with --only, --check, --verify "
+                     "or --pdf")
+        return diff_command(args.diff, args.out if args.out is not None else GENERATED)
+    if args.verify is not None:
+        if args.only or args.check or args.out or args.pdf:
+            ap.error("--verify DIR checks an existing tree; it cannot be combined with --only, --check or --out")
+        explicit = any(a == "--pmax" or a.startswith("--pmax=") for a in (argv if argv is not None else sys.argv[1:]))
+        return verify_tree(args.verify, args.pmax if explicit else None, args.quiet)
+    use_cache = not args.no_cache and not os.environ.get(NO_CACHE_ENV)
+    options = BuildOptions(pmax=args.pmax, jobs=args.jobs, scheduler=scheduler_address(args.scheduler),
+                           cache=use_cache)
+    if options.scheduler:
+        try:
+            check_reachable(options.scheduler)
+        except SchedulerError as exc:
+            print(f"build_formulas.py: {exc}; nothing was written", file=sys.stderr)
+            return 2
+    if args.install:
+        if args.out is not None or args.only or args.check:
+            ap.error("--install writes the per-user store; it cannot be combined with --out, --only or --check")
+        from suslov.loader import store_dir
+        args.out = store_dir() / f"pmax-{args.pmax}"
+    target = args.out if args.out is not None else (None if args.only else GENERATED)
+    if target is not None:
+        try:   # before any work: a file, someone else's directory or an unwritable place is refused
+            target = claim_output(target)
+        except OutputRefused as exc:
+            print(f"build_formulas.py: --out {exc}; nothing was done", file=sys.stderr)
+            return 2
+    key = build_key(options, None) if use_cache and not args.only else None
+    if key is not None:
+        status = _from_cache(key, target, args)
+        if status is not None:
+            return status
+    if not args.quiet and not args.only and options.pmax > ESTIMATE_FROM:
+        seconds = estimate_seconds(options.pmax, options.jobs)
+        if seconds is not None:
+            print(f"build_formulas.py: --pmax {options.pmax}: estimated {seconds / 60:.1f} min on the benchmark's "
+                  "machine (power-law fit in bench/results/build.md), recalibrated on this machine as the "
+                  "build runs; proceeding", file=sys.stderr)
+
+    calibration = None if args.only else Calibration(predicted_seconds(options.pmax, options.jobs))
+    try:
+        build = derive(options, args.only, Progress(quiet=args.quiet, calibration=calibration))
+    except CertificationFailure as failure:
+        print(f"build_formulas.py: {failure}", file=sys.stderr)
+        print("build_formulas.py: nothing was written", file=sys.stderr)
+        return 1
+    except SchedulerError as exc:
+        print(f"build_formulas.py: {exc}; nothing was written", file=sys.stderr)
+        return 2
+    if args.check:
+        reference = target
+        with tempfile.TemporaryDirectory(prefix="suslov-check-") as tmp:
+            fresh = Path(tmp) / "generated"
+            status = _write(build, fresh)
+            if status:
+                return status
+            if key is not None:
+                TreeCache().store(key, fresh, keep=lambda name: not is_byproduct(name))
+            _summary(build, args.quiet)
+            differing = compare_trees(fresh, reference)
+        return _check_verdict(reference, differing, "a fresh build")
+    if target is None:
+        _summary(build, args.quiet)
+        print("(--only without --out: certified, nothing written)")
+        return 0
+    status = _write(build, target)
+    if status:
+        return status
+    if key is not None:
+        TreeCache().store(key, target, keep=lambda name: not is_byproduct(name))
+    _summary(build, args.quiet)
+    print(f"wrote {target}")
+    return _pdf(args, target)
+
+
+def _pdf(args, target) -> int:
+    if args.pdf is not None:
+        try:
+            for pdf in compile_pdfs(target, args.pdf):
+                pages, problems = document_report(pdf)
+                print(f"wrote {pdf} ({pages} pages; " + (f"{len(problems)} layout problems: " + "; ".join(problems[:5])
+                                                          if problems else "no layout problems") + ")")
+        except PdfError as error:
+            print(f"build_formulas.py: --pdf: {error}", file=sys.stderr)
+            return 1
+    return 0
+
+
+def _check_verdict(reference, differing: list, against: str) -> int:
+    """--check's report: 0 when ``reference`` is identical to ``against``, else 3 naming the files."""
+    if differing:
+        print(f"build_formulas.py: --check: {reference} differs from {against} in: " + ", ".join(differing),
+              file=sys.stderr)
+        return 3
+    print(f"--check: {reference} is identical to {against}")
+    return 0
+
+
+def _from_cache(key: str, target, args) -> int | None:
+    """A whole build from the content-keyed cache (derivations.core.cache), or None when there is none."""
+    entry = TreeCache().lookup(key)
+    if entry is None:
+        return None
+    note = f"from the certificate cache (key {key[:12]}; --no-cache recomputes)"
+    if args.check:
+        with tempfile.TemporaryDirectory(prefix="suslov-check-") as tmp:
+            install_tree(entry, Path(tmp) / "generated")
+            differing = compare_trees(Path(tmp) / "generated", target)
+        return _check_verdict(target, differing, f"the build {note}")
+    install_tree(entry, target)
+    (Path(target) / "cache_report.json").write_text(json.dumps({"whole build": "from the cache", "key": key},
+                                                               indent=1) + "\n", encoding="utf-8")
+    print(f"wrote {target} {note}")
+    return _pdf(args, target)
+
+
+def _summary(build, quiet: bool) -> None:
+    if not quiet:
+        print(summary(build))
+
+
+def _write(build, target: Path) -> int:
+    """Render, certify the emitted module (round trip) and swap into place.
+
+    0 written; 1 a certificate failed; 2 the output cannot be written (nothing was replaced).
+    """
+    try:
+        write_atomically(build, target)
+    except (OutputRefused, OSError) as error:
+        print(f"build_formulas.py: cannot write {target}: {error}; {target} is unchanged", file=sys.stderr)
+        return 2
+    except CertificationFailure as failure:
+        print(f"build_formulas.py: {failure}", file=sys.stderr)
+        print(f"build_formulas.py: nothing was written ({target} is unchanged)", file=sys.stderr)
+        return 1
+    return 0
+
+
+def run(argv: list[str] | None = None) -> int:
+    """:func:`main`, with Ctrl-C reported in one line (the output is swapped in whole or not at all)."""
+    try:
+        return main(argv)
+    except KeyboardInterrupt:
+        print("build_formulas.py: interrupted; nothing was replaced (an output is swapped in whole or not at all)",
+              file=sys.stderr)
+        return 130
+
