@@ -26,3 +26,26 @@ def test_python_block_runs_as_pasted(tmp_path, index):
     result = subprocess.run([sys.executable, "-c", BLOCKS[index][1]], cwd=tmp_path, capture_output=True, text=True,
                             timeout=300)
     assert result.returncode == 0, result.stderr
+
+
+def test_build_table_is_the_committed_measurement():
+    """The README's cold-build table quotes bench/results/build_profile.json (medians, shares), not a memory of it."""
+    import json
+
+    data = json.loads((ROOT / "bench/results/build_profile.json").read_text(encoding="utf-8"))
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+
+    def seconds(run, key):
+        value = data[run][key]
+        return f"{(value['median'] if isinstance(value, dict) else value):.1f} s"
+
+    def sympy_share(run):
+        self_time = data[run]["profile"]["self"]
+        return f"{round(100 * self_time['sympy'] / sum(self_time.values()))}%"
+
+    rows = {"| default pmax, both cores |": "all cores", "| default pmax, one process |": "one process",
+            "| `--pmax 51`, both cores |": "pmax 51", "| `--pmax 101`, both cores |": "pmax 101"}
+    for row, key in rows.items():
+        assert f"{row} {seconds('base', key)} | {seconds('this', key)} |" in readme, row
+    assert (f"| SymPy's share of the self time (cProfile, one process) | {sympy_share('base')} | "
+            f"{sympy_share('this')} |") in readme
