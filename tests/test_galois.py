@@ -156,3 +156,22 @@ def test_proposition_5_4_degrees():
     for row in rows:
         p = row["p"]
         assert row["degrees"] == [-(p + 4), -(p + 2), -p]
+
+
+def test_leading_coefficient_at_double_pole_against_the_limit():
+    """r_0 from the shifted denominator's z^2 coefficient against SymPy's limit of (z - s)^2 num/den; a simple
+    root is refused."""
+    import sympy as sp
+
+    from derivations.sections.galois import leading_coefficient_at_double_pole
+
+    z, m = sp.symbols("z m")
+    K = sp.QQ_I.frac_field(m)
+    num = 3 * z**3 - m * z + 1
+    den = (z - sp.I) ** 2 * (z + m) * (2 * z - 1)
+    value = leading_coefficient_at_double_pole(sp.Poly(num, z, domain=K), sp.Poly(sp.expand(den), z, domain=K), sp.I)
+    expected = sp.limit((z - sp.I) ** 2 * num / den, z, sp.I)
+    assert sp.simplify(K.to_sympy(value) - expected) == 0
+    with pytest.raises(ArithmeticError):
+        leading_coefficient_at_double_pole(sp.Poly(num, z, domain=K), sp.Poly(sp.expand((z - sp.I) * (z + m) ** 2), z,
+                                                                                domain=K), sp.I)

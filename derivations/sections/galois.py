@@ -119,25 +119,14 @@ def _shifted(poly: sp.Poly, point, terms: int) -> list:
     return taylor_shift(high_to_low[::-1], point, poly.domain.zero, terms)
 
 
-def _taylor(num: sp.Poly, den: sp.Poly, point, order: int) -> list:
-    """Taylor coefficients of num/den at z = point (Polys over a field containing point)."""
+def leading_coefficient_at_double_pole(num: sp.Poly, den: sp.Poly, point):
+    """``r_0 = lim (z - point)^2 num/den`` where ``point`` is a double root of ``den``: ``num(point) / c2`` with
+    ``den(point + zeta) = c2 zeta^2 + ...`` (exact in the Polys' field; raises if the root is not double)."""
     K = num.domain
-    a = _shifted(num, K.convert(point), order + 1) + [K.zero] * (order + 1)
-    b = _shifted(den, K.convert(point), order + 1) + [K.zero] * (order + 1)
-    out = []
-    for k in range(order + 1):
-        value = a[k] - sum((b[j] * out[k - j] for j in range(1, k + 1)), K.zero)
-        out.append(value / b[0])
-    return out
-
-
-def without_double_root(den: sp.Poly, point) -> sp.Poly:
-    """den / (z - point)^2, exact (raises if the division leaves a remainder)."""
-    square = sp.Poly((z - point) ** 2, z, domain=den.domain)
-    quotient, remainder = den.div(square)
-    if not remainder.is_zero:
+    c0, c1, c2 = (_shifted(den, K.convert(point), 3) + [K.zero] * 3)[:3]
+    if c0 or c1 or not c2:
         raise ArithmeticError(f"z = {point} is not a double root")
-    return quotient
+    return _shifted(num, K.convert(point), 1)[0] / c2
 
 
 POINTS = {"s0": sp.Integer(0), "s1": sp.I, "s2": -sp.I, "s3": -sp.I * m, "s4": -sp.I / m}
@@ -257,7 +246,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                           [Q.subs(to_m).subs(z, pt) for pt in points.values()], Domain("Q(m)[i]"))
     deltas = {}
     for name, pt in points.items():
-        rho0 = _taylor(num, without_double_root(den, pt), pt, 0)[0]
+        rho0 = leading_coefficient_at_double_pole(num, den, pt)
         deltas[name] = Kp.to_sympy(1 + 4 * rho0)
     deltas["s5"] = Kp.to_sympy(1 + 4 * num.LC() / den.LC())  # r ~ rho/z^2 at infinity
     expected = {"s0": -p**2 / d_m**2, "s5": -p**2 / d_m**2, "s1": p**2, "s2": p**2, "s3": 4, "s4": 4}
