@@ -132,3 +132,13 @@ def test_f_fhat_tables_as_sympy_factors_them():
             for k in range(expanded.degree() + 1):
                 expected = latex(sp.factor(expanded.coeff_monomial(xs**k) / den2, gaussian=True))
                 assert rows[p, k][name] == expected, (p, k, name)
+
+
+def test_rational_polys_are_the_parsed_forms():
+    """rational_polys (built from coefficients) equals Poly(rational_forms(...)) over QQ(d), p = 1, 3, 5."""
+    from derivations.sections.first_integrals import _poly, construct, rational_forms, rational_polys
+
+    for p in (1, 3, 5):
+        ff, _ = construct(p)
+        parsed, built = [_poly(a) for a in rational_forms(ff)], rational_polys(ff)
+        assert [(x.rep, x.gens, x.domain) for x in parsed] == [(x.rep, x.gens, x.domain) for x in built]
