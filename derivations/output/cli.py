@@ -239,24 +239,18 @@ def main(argv: list[str] | None = None) -> int:
         reference = target
         with tempfile.TemporaryDirectory(prefix="suslov-check-") as tmp:
             fresh = Path(tmp) / "generated"
-            status = _write(build, fresh)
+            status = _write_and_cache(build, fresh, key, args.quiet)
             if status:
                 return status
-            if key is not None:
-                TreeCache().store(key, fresh, keep=lambda name: not is_byproduct(name))
-            _summary(build, args.quiet)
             differing = compare_trees(fresh, reference)
         return _check_verdict(reference, differing, "a fresh build")
     if target is None:
         _summary(build, args.quiet)
         print("(--only without --out: certified, nothing written)")
         return 0
-    status = _write(build, target)
+    status = _write_and_cache(build, target, key, args.quiet)
     if status:
         return status
-    if key is not None:
-        TreeCache().store(key, target, keep=lambda name: not is_byproduct(name))
-    _summary(build, args.quiet)
     print(f"wrote {target}")
     return _pdf(args, target)
 
@@ -321,6 +315,18 @@ def _write(build, target: Path) -> int:
         print(f"build_formulas.py: {failure}", file=sys.stderr)
         print(f"build_formulas.py: nothing was written ({target} is unchanged)", file=sys.stderr)
         return 1
+    return 0
+
+
+def _write_and_cache(build, target: Path, key, quiet: bool) -> int:
+    """Write the build into ``target`` (:func:`_write`), keep it in the tree cache under ``key`` (if any) and
+    print the summary; the exit status of the write."""
+    status = _write(build, target)
+    if status:
+        return status
+    if key is not None:
+        TreeCache().store(key, target, keep=lambda name: not is_byproduct(name))
+    _summary(build, quiet)
     return 0
 
 
