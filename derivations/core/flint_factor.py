@@ -62,18 +62,6 @@ def factor_univariate(numerator: list, denominator: list, x: sp.Symbol) -> sp.Ex
     return _keep_coeff(sp.Rational(coefficient.numerator, coefficient.denominator), product)
 
 
-def factor_rational(expr: sp.Expr, x: sp.Symbol) -> sp.Expr:
-    """``sympy.factor(expr)`` for a rational function ``expr`` of the single symbol ``x`` over Q.
-
-    >>> import sympy as sp
-    >>> x = sp.Symbol("x")
-    >>> factor_rational(x/2 + x**2/2, x)
-    x*(x + 1)/2
-    """
-    num, den = sp.fraction(sp.together(expr))
-    return factor_univariate(sp.Poly(num, x).all_coeffs()[::-1], sp.Poly(den, x).all_coeffs()[::-1], x)
-
-
 # --- over the Gaussian rationals Q(i): products of linear factors --------------------------------------
 # python-flint 0.9 factors over Z only.  A polynomial f in Q(i)[x] whose roots all lie in Q(i) (the F and
 # F-hat coefficient tables, section 5.1, eq:ghyp and poly_F2: Pochhammer products) is split through its
