@@ -26,7 +26,7 @@ The enclosure, in three rigorous pieces:
    :func:`_majorant_tail`).
 2. **Taylor steps** from s0 = -S to s1 = +S (step h, centre c).  The Taylor coefficients of tanh and
    sech at c come from ``arb_series`` (exp of a series), those of gamma from Picard iteration on
-   series (each pass fixes one more coefficient).  Truncation after order N: on the closed square
+   series (pass n fixes coefficient n and runs on series of n + 1 terms).  Truncation after order N: on the closed square
    ``|Re tau|, |Im tau| <= rho`` (rho <= 1, corners at distance sqrt 2 < pi/2 from c, so tanh and sech
    are analytic there) ``|omega_i| <= |u_i| max|tanh| + |v_i| max|sech|`` (acb enclosures on a grid
    of sub-boxes), hence ``||A|| <= M = sqrt(2 (W1^2 + W2^2))`` (Frobenius norm of the cross-product
@@ -173,10 +173,13 @@ def _step(y, c: arb, h: arb, u, v, order: int) -> list:
     length = order + 1
     tanh, sech = _tanh_sech_series(c, length)
     w1, w2 = u[0] * tanh + v[0] * sech, u[1] * tanh + v[1] * sech
-    g = [arb_series([y[k]], prec=length) for k in range(3)]
-    for _ in range(order):                           # Picard: pass k fixes coefficient k
-        rhs = (-g[2] * w2, g[2] * w1, g[0] * w2 - g[1] * w1)   # gamma x (w1, w2, 0)
-        g = [arb_series([y[k]], prec=length) + rhs[k].integral() for k in range(3)]
+    # Picard: pass n fixes coefficient n, so it only needs series of n + 1 terms (the products of
+    # shorter series are a third of the work of full-length ones; the balls are the same bits for
+    # the build's orders, where arb_poly_mullow computes each coefficient on its own)
+    g = [arb_series([y[k]], prec=1) for k in range(3)]
+    for n in range(1, length):
+        rhs = (-g[2] * w2, g[2] * w1, g[0] * w2 - g[1] * w1)   # gamma x (w1, w2, 0), n terms
+        g = [arb_series([y[k]], prec=n + 1) + rhs[k].integral() for k in range(3)]
     values = []
     for k in range(3):
         total = arb(0)
