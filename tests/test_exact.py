@@ -53,6 +53,14 @@ def test_functions_are_rejected_not_passed():
     assert cert.outcome is Outcome.UNKNOWN
 
 
+def test_fractional_powers_are_unknown_not_dropped():
+    """sqrt(x) - 1 once passed: the polynomial reader took int(1/2) = 0 as the exponent."""
+    log = CertificateLog()
+    for expr in (sp.sqrt(x) - 1, x ** sp.Rational(3, 2) - x, 1 / sp.sqrt(x + y) - 1):
+        cert = certify_zero(log, "a fractional power", "test", expr, PLAIN, expect=Outcome.UNKNOWN)
+        assert cert.outcome is Outcome.UNKNOWN and "not a polynomial" in cert.detail
+
+
 def test_unexpected_outcome_raises_and_names_the_claim():
     log = CertificateLog()
     try:
