@@ -93,6 +93,13 @@ class SympyField:
     def is_zero(self):
         return not self.value
 
+    @classmethod
+    def combination(cls, pairs):
+        total = cls.K.zero
+        for c, x in pairs:   # c: python-flint fmpq
+            total += cls.K.convert(sp.Rational(int(c.p), int(c.q))) * x.value
+        return cls(total)
+
     def to_sympy(self, symbol):
         return self.K.to_sympy(self.value)
 

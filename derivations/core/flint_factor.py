@@ -27,7 +27,7 @@ import sympy as sp
 from sympy.core.exprtools import _keep_coeff
 
 
-def _integer_poly(coefficients: list) -> tuple[flint.fmpz_poly, Fraction]:
+def integer_poly(coefficients: list) -> tuple[flint.fmpz_poly, Fraction]:
     """(integer polynomial, rational scale) with the given polynomial = scale * integer polynomial."""
     fractions = [Fraction(c) for c in coefficients]
     lcm = math.lcm(*(c.denominator for c in fractions))
@@ -48,8 +48,8 @@ def factor_univariate(numerator: list, denominator: list, x: sp.Symbol) -> sp.Ex
     >>> factor_univariate([-2, 0, -2], [6, 3], x) == sp.factor((-2 - 2*x**2)/(6 + 3*x))
     True
     """
-    num, num_scale = _integer_poly(numerator)
-    den, den_scale = _integer_poly(denominator)
+    num, num_scale = integer_poly(numerator)
+    den, den_scale = integer_poly(denominator)
     if den.is_zero():
         raise ZeroDivisionError("denominator is the zero polynomial")
     if num.is_zero():
@@ -60,6 +60,32 @@ def factor_univariate(numerator: list, denominator: list, x: sp.Symbol) -> sp.Ex
     product = sp.Mul(*([_as_expr(f, x) ** e for f, e in num_factors]
                        + [_as_expr(f, x) ** -e for f, e in den_factors]))
     return _keep_coeff(sp.Rational(coefficient.numerator, coefficient.denominator), product)
+
+
+def factor_list_univariate(coefficients: list, x: sp.Symbol) -> tuple[sp.Rational, list]:
+    """``sympy.factor_list`` of the polynomial with these rational coefficients (constant first), not zero.
+
+    SymPy's result: the content with the sign, and the primitive irreducible factors (positive leading
+    coefficient) with their multiplicities, as expressions, in the order of SymPy's ``_sorted_factors``
+    (length of the dense coefficient list, number of generators, multiplicity, domain, the coefficients
+    from the leading one down).  The multiplicities are ints (SymPy writes that of ``x`` as an
+    ``Integer``: equal, and the same power ``x**k``).
+
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> factor_list_univariate([0, 0, -8, 0, -2], x)
+    (-2, [(x, 2), (x**2 + 4, 1)])
+    >>> factor_list_univariate([0, 0, -8, 0, -2], x) == sp.factor_list(-8*x**2 - 2*x**4)
+    True
+    """
+    poly, scale = integer_poly(coefficients)
+    if poly.is_zero():
+        raise ValueError("the zero polynomial has no factor list")
+    content, factors = poly.factor()
+    ordered = sorted(((f, e) for f, e in factors),
+                     key=lambda fe: (fe[0].degree() + 1, 1, fe[1], "ZZ", [int(c) for c in reversed(fe[0].coeffs())]))
+    lead = Fraction(int(content)) * scale
+    return sp.Rational(lead.numerator, lead.denominator), [(_as_expr(f, x), int(e)) for f, e in ordered]
 
 
 # --- over the Gaussian rationals Q(i): products of linear factors --------------------------------------

@@ -79,6 +79,19 @@ class LaurentQD:
     def is_zero(self) -> bool:
         return self.num.is_zero()
 
+    @classmethod
+    def combination(cls, pairs) -> LaurentQD:
+        """``sum c x`` over ``(c, x)`` pairs, ``c`` a python-flint ``fmpq``: one polynomial sum over the
+        lowest shift instead of an element per product and per partial sum (exact, the same element)."""
+        pairs = [(c, x) for c, x in pairs if c != 0 and not x.num.is_zero()]
+        if not pairs:
+            return cls(flint.fmpq_poly([]))
+        low = min(x.shift for _, x in pairs)
+        total = flint.fmpq_poly([])
+        for c, x in pairs:
+            total += x.num.left_shift(x.shift - low) * c
+        return cls(total, low)
+
     def __eq__(self, other) -> bool:
         return isinstance(other, LaurentQD) and self.shift == other.shift and self.num == other.num
 

@@ -178,11 +178,18 @@ def breakable_product(expr) -> str:
     ``-\\frac{49}{1061683200 d^{15}}\\,(d^{2} + 49)\\allowbreak(4 d^{2} + 49)...``: the monomial
     part as a fraction, then each polynomial factor, so a table cell can wrap it.
     """
-    printer = FormulaPrinter()
     numerator, denominator = sp.fraction(sp.cancel(expr))
     lead, factor_powers = sp.factor_list(numerator)   # primitive factors, positive leading coefficients
     polynomial = [base**power for base, power in factor_powers if base.is_Add]
     lead = lead * sp.Mul(*[base**power for base, power in factor_powers if not base.is_Add]) / denominator
+    return breakable_factors(lead, polynomial, expr)
+
+
+def breakable_factors(lead, polynomial: list, expr) -> str:
+    """:func:`breakable_product` from its parts: ``expr = lead * prod(polynomial)``, ``lead`` a rational
+    times a monomial, ``polynomial`` the powers of the sums in ``sympy.factor_list``'s order (for a caller
+    that factors with python-flint: :func:`derivations.core.flint_factor.factor_list_univariate`)."""
+    printer = FormulaPrinter()
     if not polynomial:
         return printer.doprint(expr)
     sign = "- " if lead.could_extract_minus_sign() else ""

@@ -45,10 +45,11 @@ from __future__ import annotations
 from fractions import Fraction
 from math import factorial
 
+import flint
 import symengine as se
 import sympy as sp
 
-from derivations.core import paper
+from derivations.core import flint_factor, paper
 from derivations.core.certificates import (
     Certificate,
     CertificateLog,
@@ -61,7 +62,7 @@ from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.rational_field import LaurentQD
 from derivations.core.result import DerivationResult
 from derivations.core.symbols import I11, I13, I22, I23, c, d, p, r
-from derivations.core.typeset import breakable_product, latex
+from derivations.core.typeset import breakable_factors, latex
 from derivations.sections import physical_bodies
 from derivations.sections.special_case import C_EXT, PD_DOMAIN, poisson_matrix
 
@@ -120,33 +121,22 @@ def certify_laurent_series(log: CertificateLog, coth: list, csch: list) -> Certi
         elapsed[0], 2 * (n + 1), f"{n + 1} coefficients of each series"))
 
 
-def _matvec(M, v):
-    """M v for M given by its non-zero entries per row (A_n has 4 of 9: the zeros cost as much as the rest)."""
-    out = []
-    for row in M:
-        total = None
-        for j, entry in row:
-            term = entry * v[j]
-            total = term if total is None else total + term
-        out.append(total if total is not None else LaurentQD.constant(0))
-    return out
-
-
-def _sparse(M):
-    return [[(j, entry) for j, entry in enumerate(row) if not entry.is_zero()] for row in M]
-
-
 def _dot(u, v):
     return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
 
 
 def frobenius_obstructions(p_value: int) -> list[tuple[int, str, sp.Expr]]:
+    """:func:`frobenius_obstructions_exact` with the obstructions as SymPy expressions in d."""
+    return [(k, name, value.to_sympy(d)) for k, name, value in frobenius_obstructions_exact(p_value)]
+
+
+def frobenius_obstructions_exact(p_value: int) -> list[tuple[int, str, LaurentQD]]:
     """(k, parameter, obstruction) at every resonance of the chain started at exponent -p.
 
     Arithmetic in the Laurent ring Q[d, 1/d] (:class:`derivations.core.rational_field.LaurentQD`,
     python-flint polynomials): every division is by d, a constant or an eigenvector norm (2 p^2 or
     -d^2), a unit there, so no gcd is needed (10x faster than gcd-reduced Q(d) at p = 100, same
-    obstructions: tests/test_rational_field.py); the obstructions are returned as SymPy expressions.
+    obstructions: tests/test_rational_field.py); the obstructions are returned exactly, as LaurentQD.
     """
     C = LaurentQD.constant
     dd = LaurentQD.variable()
@@ -154,8 +144,6 @@ def frobenius_obstructions(p_value: int) -> list[tuple[int, str, sp.Expr]]:
     e = dd * dd + C(1)
     coth, csch = laurent_coefficients(p_value + 1)
     zero = C(0)
-    A = [_sparse([[zero, zero, a * C(csch[k])], [zero, zero, a * C(coth[k])],
-                  [a * e * C(csch[k]), -(a * C(coth[k])), zero]]) for k in range(p_value + 2)]
     # eigenvectors of A0 = a [[0,0,1],[0,0,1],[e,-1,0]]: right v, left l, l.v
     eig = {}
     for nu in (-p_value, 0, p_value):
@@ -167,13 +155,22 @@ def frobenius_obstructions(p_value: int) -> list[tuple[int, str, sp.Expr]]:
         eig[nu] = (right, left, _dot(left, right))
     Y = {0: {"alpha": eig[-p_value][0]}}
     obstructions = []
+    # A_n = a [[0, 0, csch_n], [0, 0, coth_n], [e csch_n, -coth_n, 0]]: sum_n A_n Y_(k-2n) is a times rational
+    # combinations of the earlier components (LaurentQD.combination), two products per k, not four per n
+    rationals = [(flint.fmpq(int(sp.Rational(s_).p), int(sp.Rational(s_).q)),
+                  flint.fmpq(int(sp.Rational(c_).p), int(sp.Rational(c_).q))) for s_, c_ in zip(csch, coth)]
+    combine = LaurentQD.combination
     for k in range(1, 2 * p_value + 1):
-        rhs = {}
+        earlier = {}
         for n in range(1, k // 2 + 1):
             for name, vec in Y.get(k - 2 * n, {}).items():
-                term = _matvec(A[n], vec)
-                old = rhs.get(name, [zero, zero, zero])
-                rhs[name] = [old[i] + term[i] for i in range(3)]
+                earlier.setdefault(name, []).append((rationals[n], vec))
+        rhs = {}
+        for name, pairs in earlier.items():
+            rhs[name] = [a * combine((cs, v[2]) for (cs, _), v in pairs),
+                         a * combine((ct, v[2]) for (_, ct), v in pairs),
+                         a * (e * combine((cs, v[0]) for (cs, _), v in pairs)
+                              - combine((ct, v[1]) for (_, ct), v in pairs))]
         mu = k - p_value
         solution = {}
         for name, vec in rhs.items():
@@ -183,7 +180,7 @@ def frobenius_obstructions(p_value: int) -> list[tuple[int, str, sp.Expr]]:
             for nu, (right, left, norm) in eig.items():
                 weight = _dot(left, vec) / norm
                 if nu == mu:
-                    obstructions.append((k, name, weight.to_sympy(d)))
+                    obstructions.append((k, name, weight))
                     continue
                 factor = weight / C(mu - nu)
                 comps = [comps[i] + factor * right[i] for i in range(3)]
@@ -242,6 +239,47 @@ def is_zero(expr, domain: Domain) -> bool:
     return is_identically_zero(expr, domain)
 
 
+def _num_coefficients(value: LaurentQD) -> list:
+    """The coefficients of ``num`` (constant first) as Fractions."""
+    return [Fraction(int(c.p), int(c.q)) for c in value.num.coeffs()]
+
+
+def _coefficients(value: LaurentQD) -> tuple[list, list]:
+    """(numerator, denominator) coefficient lists, constant first, of ``num d^shift``."""
+    num = _num_coefficients(value)
+    if value.shift >= 0:
+        return [Fraction(0)] * value.shift + num, [Fraction(1)]
+    return num, [Fraction(0)] * -value.shift + [Fraction(1)]
+
+
+def positive_factors(value: LaurentQD) -> bool:
+    """:func:`nowhere_zero_for_positive_d` of ``num d^shift`` from python-flint's factors of ``num`` (the
+    same irreducible factors as SymPy's up to sign and content, which the test ignores)."""
+    if value.is_zero():
+        return False
+    poly = flint_factor.integer_poly(_num_coefficients(value))[0]
+    for factor, _ in poly.factor()[1]:
+        coeffs = [int(c) for c in factor.coeffs()]
+        if factor.degree() == 1 and coeffs[0] == 0:     # the monomial d
+            continue
+        if not (all(c >= 0 for c in coeffs) or all(c <= 0 for c in coeffs)):
+            return False
+        if any(c and k % 2 for k, c in enumerate(coeffs)):
+            return False
+    return True
+
+
+def printed_parts(value: LaurentQD) -> tuple[str, str]:
+    """(``str(sympy.factor(v))``, ``breakable_product(v)``) of ``v = num d^shift``, factored by python-flint
+    (:mod:`derivations.core.flint_factor`: the same SymPy objects, so the same text)."""
+    numerator, denominator = _coefficients(value)
+    factored = flint_factor.factor_univariate(numerator, denominator, d)
+    lead, factors = flint_factor.factor_list_univariate(_num_coefficients(value), d)
+    polynomial = [base**power for base, power in factors if base.is_Add]
+    lead = lead * sp.Mul(*[base**power for base, power in factors if not base.is_Add]) * d**value.shift
+    return str(factored), breakable_factors(lead, polynomial, value.to_sympy(d) if not polynomial else None)
+
+
 def nowhere_zero_for_positive_d(value: sp.Expr) -> bool:
     """True when every irreducible factor of ``value`` is +-d^k or a polynomial in d^2 with positive coefficients."""
     num, den = sp.fraction(sp.together(value))
@@ -266,15 +304,17 @@ def logarithm_verdict(p_value: int) -> tuple[str, str, int, list[str], float]:
     from another process.
     """
     with stopwatch() as elapsed:
-        obstructions = frobenius_obstructions(p_value)
-        nonzero = [(k, name, value) for k, name, value in obstructions if value != 0]
-    positive = all(nowhere_zero_for_positive_d(value) for _, _, value in nonzero)
+        obstructions = frobenius_obstructions_exact(p_value)
+        nonzero = [(k, name, value) for k, name, value in obstructions if not value.is_zero()]
+    # the factorisations by python-flint (the SymPy texts they replace: tests/test_residue_factors.py)
+    positive = all(positive_factors(value) for _, _, value in nonzero)
+    printed = [printed_parts(value) for _, _, value in nonzero]
     verdict = ("no logarithms" if not nonzero else
                "logarithms for every d > 0" if positive else "logarithms (generic d)")
     detail = ("all resonance obstructions vanish identically: "
               + ", ".join(f"k={k} ({name})" for k, name, _ in obstructions)) if not nonzero else (
-        "non-zero obstruction " + ", ".join(f"k={k} ({name}): {sp.factor(v)}" for k, name, v in nonzero))
-    return verdict, detail[:400], len(obstructions), [breakable_product(v) for _, _, v in nonzero][:2], elapsed[0]
+        "non-zero obstruction " + ", ".join(f"k={k} ({name}): {text}" for (k, name, _), (text, _) in zip(nonzero, printed)))
+    return verdict, detail[:400], len(obstructions), [tex for _, tex in printed][:2], elapsed[0]
 
 
 def run(log: CertificateLog, options, model_result, kova_result, special_result) -> DerivationResult:
