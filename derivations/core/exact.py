@@ -150,7 +150,7 @@ def normal_form(expr: sp.Expr, domain: Domain) -> NormalForm:
     """
     expr = sp.sympify(expr)
     if expr.has(sp.I):
-        expr = expr.subs(sp.I, IMAGINARY.symbol)
+        expr = expr.xreplace({sp.I: IMAGINARY.symbol})   # an atom: subs would ask every node to rewrite itself
         domain = domain.with_extensions(domain.name, IMAGINARY)
     if expr.atoms(sp.Function):
         names = sorted({type(f).__name__ for f in expr.atoms(sp.Function)})

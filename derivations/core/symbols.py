@@ -23,3 +23,16 @@ x = sp.Symbol("x")          # x = exp(t), used for residues at t = i*pi/2
 
 omega = sp.Matrix([w1, w2, 0])
 gamma = sp.Matrix([g1, g2, g3])
+
+def from_symengine(expr, *symbols: sp.Symbol) -> sp.Expr:
+    """A symengine result as SymPy with ``symbols`` (SymPy symbols with their assumptions) put back by name:
+    symengine keeps a symbol's name, not its assumptions, so a plain ``Symbol("d")`` would otherwise stand
+    beside the positive ``d`` as a second generator.  Other names stay plain symbols.
+
+    >>> import symengine as se
+    >>> from_symengine(se.Symbol("d") ** 2 + se.Symbol("t"), d).free_symbols == {d, sp.Symbol("t")}
+    True
+    """
+    value = sp.sympify(expr)
+    own = {s.name: s for s in symbols}
+    return value.xreplace({s: own[s.name] for s in value.free_symbols if s.name in own and s != own[s.name]})

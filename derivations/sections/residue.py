@@ -61,7 +61,7 @@ from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.rational_field import LaurentQD
 from derivations.core.result import DerivationResult
-from derivations.core.symbols import I11, I13, I22, I23, c, d, p, r
+from derivations.core.symbols import I11, I13, I22, I23, c, d, from_symengine, p, r
 from derivations.core.typeset import breakable_factors, latex
 from derivations.sections import physical_bodies
 from derivations.sections.special_case import C_EXT, PD_DOMAIN, poisson_matrix
@@ -192,14 +192,6 @@ def frobenius_obstructions_exact(p_value: int) -> list[tuple[int, str, LaurentQD
     return obstructions
 
 
-def _from_symengine(expr) -> sp.Expr:
-    """A symengine expression in d, c as SymPy, with the project's symbols (symengine keeps names, not
-    SymPy's assumptions: a plain Symbol("d") would be a second generator beside the positive d)."""
-    value = sp.sympify(expr)
-    own = {"d": d, "c": c}
-    return value.xreplace({s: own[s.name] for s in value.free_symbols if s.name in own and s != own[s.name]})
-
-
 def gauge_transformed_pole(S_printed: sp.Matrix, p_value: int) -> tuple[int, bool]:
     """Highest pole order of B = U^-1 S^-1 A S U - U^-1 U' at tau = 0, and whether its residue is -p Id.
 
@@ -224,10 +216,10 @@ def gauge_transformed_pole(S_printed: sp.Matrix, p_value: int) -> tuple[int, boo
             entry = se.expand(Bhat[i, j] * tau_se**shift)
             for degree in range(shift - 1):
                 coefficient = entry.coeff(tau_se, degree)
-                if coefficient != 0 and not is_zero(_from_symengine(coefficient), domain):
+                if coefficient != 0 and not is_zero(from_symengine(coefficient, d, c), domain):
                     max_pole = max(max_pole, shift - degree)
                     break
-            b0 = _from_symengine(entry.coeff(tau_se, shift - 1))
+            b0 = from_symengine(entry.coeff(tau_se, shift - 1), d, c)
             target = det_S * ([p_value, 0, -p_value][i] if i == j else 0)
             residue_ok &= is_zero(b0 - target, domain)
     max_pole = max(max_pole, 1)

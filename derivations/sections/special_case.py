@@ -27,6 +27,7 @@ evaluates ``eps * omega(i pi/2 + eps)`` with mpmath.)
 from __future__ import annotations
 
 import mpmath
+import symengine as se
 import sympy as sp
 
 from derivations.core import paper
@@ -44,7 +45,7 @@ from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.numeric import corroborate, mp_function, ode_residual
 from derivations.core.result import DerivationResult
-from derivations.core.symbols import I11, I13, I22, I23, I33, c, d, p, r, w1, w2, x
+from derivations.core.symbols import I11, I13, I22, I23, I33, c, d, from_symengine, p, r, w1, w2, x
 from derivations.core.typeset import latex
 from derivations.sections import model
 
@@ -60,6 +61,13 @@ I_DOMAIN = Domain("Q(I11,I22,I23)")
 
 SUBSTITUTION = {I13: 0, I11: I22 * (d**2 + 1), I23: -I22 * d / p, r: I22 * c}
 lam = sp.Symbol("lambda")  # eigenvalue variable
+
+
+def _expanded_det(matrix: sp.Matrix) -> sp.Expr:
+    """``sympy.expand(matrix.det())`` for a matrix of Laurent monomials in d, c, lambda and i (the per-p A0 -
+    lambda I) through symengine: a sum of monomials, which SymPy writes one way only, so the same
+    expression (tests/test_special_case_det.py: p <= 101), about 6x faster."""
+    return from_symengine(se.expand(se.Matrix(matrix).det()), d, c, p)
 
 
 def residue_at_i_pi_half(expr: sp.Expr) -> sp.Expr:
@@ -228,7 +236,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     per_p = []
     for p_value in options.p_values():
         cert = certify_zero(log, f"p = {p_value}: det(A0 - lambda) = -lambda (lambda - {p_value})(lambda + {p_value})",
-                            "eq:ro", sp.expand((A0.subs(p, p_value) - lam * sp.eye(3)).det())
+                            "eq:ro", _expanded_det(A0.subs(p, p_value) - lam * sp.eye(3))
                             + lam * (lam - p_value) * (lam + p_value), Domain("Q(d)[c]/(c^2-d^2-1)", (C_EXT,)))
         per_p.append({"p": p_value, "parity": "odd" if p_value % 2 else "even",
                       "eigenvalues": f"0, {p_value}, -{p_value}", "level": latex(p_value**2 * (d**2 + 1) / d**2),
