@@ -33,6 +33,17 @@ of digits is checked against the closed form by the caller.
 from __future__ import annotations
 
 import mpmath
+from mpmath.libmp import fzero
+from mpmath.libmp import mpf_add as add
+from mpmath.libmp import mpf_mul as mul
+from mpmath.libmp import mpf_mul_int as mul_int
+from mpmath.libmp import mpf_neg as neg
+from mpmath.libmp import mpf_sub as sub
+
+
+def _raw(value):
+    """The raw (sign, mantissa, exponent, bits) of an mpf, as mpmath's own operators would see it."""
+    return mpmath.mpf(value)._mpf_
 
 
 def cross(g, w):
@@ -52,16 +63,23 @@ def limit_series(u, v, g0, at_plus: bool, terms: int):
         w.append([uu[i] * (shifted2 - inv[k]) + 2 * v[i] * shifted1 for i in range(2)])
     coeffs = [[mpmath.mpf(c) for c in g0]]
     w0 = w[0]
+    prec, rnd = mpmath.mp._prec_rounding
+    raw_w = [[_raw(c) for c in wj] for wj in w]
+    raw = [[c._mpf_ for c in coeffs[0]]]
     for k in range(1, terms + 1):
-        r0 = r1 = r2 = mpmath.mpf(0)
-        for j in range(1, k + 1):  # sum_j s (gamma_(k-j) x w_j), component by component (cross() inlined)
-            g_, w_ = coeffs[k - j], w[j]
-            r0 += s * (-g_[2] * w_[1])
-            r1 += s * (g_[2] * w_[0])
-            r2 += s * (g_[0] * w_[1] - g_[1] * w_[0])
-        rhs = [r0, r1, r2]
+        # sum_j s (gamma_(k-j) x w_j), component by component: the operations of
+        # ``r0 += s * (-g2 * w1)`` etc. on mpf, on their raw values (same roundings, same bits)
+        r0 = r1 = r2 = fzero
+        for j in range(1, k + 1):
+            g_, w_ = raw[k - j], raw_w[j]
+            r0 = add(r0, mul_int(mul(neg(g_[2], prec, rnd), w_[1], prec, rnd), s, prec, rnd), prec, rnd)
+            r1 = add(r1, mul_int(mul(g_[2], w_[0], prec, rnd), s, prec, rnd), prec, rnd)
+            r2 = add(r2, mul_int(sub(mul(g_[0], w_[1], prec, rnd), mul(g_[1], w_[0], prec, rnd), prec, rnd), s,
+                                 prec, rnd), prec, rnd)
+        rhs = [mpmath.mp.make_mpf(r) for r in (r0, r1, r2)]
         M = mpmath.matrix([[k, 0, s * w0[1]], [0, k, -s * w0[0]], [-s * w0[1], s * w0[0], k]])
         coeffs.append(list(mpmath.lu_solve(M, mpmath.matrix(rhs))))
+        raw.append([c._mpf_ for c in coeffs[-1]])
     return coeffs
 
 
@@ -79,18 +97,23 @@ def taylor_step(g, t0, h, u, v, tol):
     T, S, G = [mpmath.tanh(t0)], [mpmath.sech(t0)], [list(g)]
     W = []     # omega's Taylor coefficients, each computed once (the same operations as inline: same digits)
     total, power, n, small = list(g), mpmath.mpf(1), 0, 0
+    prec, rnd = mpmath.mp._prec_rounding
+    raw_g, raw_w = [[_raw(c) for c in g]], []
     while small < 3:
         W.append([u[i] * T[n] + v[i] * S[n] for i in range(2)])
-        a0 = a1 = a2 = mpmath.mpf(0)
-        for j in range(n + 1):     # sum_j G_j x W_(n-j), component by component (cross() inlined)
-            g_, w_ = G[j], W[n - j]
-            a0 += -g_[2] * w_[1]
-            a1 += g_[2] * w_[0]
-            a2 += g_[0] * w_[1] - g_[1] * w_[0]
-        acc = [a0, a1, a2]
+        raw_w.append([c._mpf_ for c in W[-1]])
+        # sum_j G_j x W_(n-j), component by component: ``a0 += -g2 * w1`` etc. on the raw values
+        a0 = a1 = a2 = fzero
+        for j in range(n + 1):
+            g_, w_ = raw_g[j], raw_w[n - j]
+            a0 = add(a0, mul(neg(g_[2], prec, rnd), w_[1], prec, rnd), prec, rnd)
+            a1 = add(a1, mul(g_[2], w_[0], prec, rnd), prec, rnd)
+            a2 = add(a2, sub(mul(g_[0], w_[1], prec, rnd), mul(g_[1], w_[0], prec, rnd), prec, rnd), prec, rnd)
+        acc = [mpmath.mp.make_mpf(a) for a in (a0, a1, a2)]
         T.append(mpmath.fsum(S[j] * S[n - j] for j in range(n + 1)) / (n + 1))
         S.append(-mpmath.fsum(T[j] * S[n - j] for j in range(n + 1)) / (n + 1))
         G.append([a / (n + 1) for a in acc])
+        raw_g.append([c._mpf_ for c in G[-1]])
         n += 1
         power *= h
         term = [c * power for c in G[-1]]
