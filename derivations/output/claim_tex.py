@@ -22,6 +22,7 @@ checks that every digit of every claim survives, and that no ASCII operator is l
 """
 from __future__ import annotations
 
+import functools
 import re
 
 GREEK = {name: "\\" + name for name in (
@@ -266,6 +267,12 @@ def claim_latex(claim) -> str:
     >>> print(claim_latex("Re Lambda^2 = (I11 I22)^2 x printed eq:neccg12"))
     $\\operatorname{Re} \\Lambda^{2} = (I_{11} I_{22})^{2} \\times$ printed \\texttt{eq:neccg12}
     """
+    return _claim_latex(str(claim))
+
+
+@functools.lru_cache(maxsize=4096)
+def _claim_latex(claim: str) -> str:
+    """:func:`claim_latex` of a string, once per distinct text (the templates ask about four times per claim)."""
     pieces, run = [], []
 
     def flush():
@@ -283,7 +290,7 @@ def claim_latex(claim) -> str:
         pieces.append(_text(tail))
         run.clear()
 
-    for kind, text, role in _classify(_tokens(str(claim))):
+    for kind, text, role in _classify(_tokens(claim)):
         if role in ("prose", "break"):
             flush()
             pieces.append("\\texttt{" + _escape(text) + "}" if kind == "code" else _escape(text))
