@@ -7,9 +7,11 @@ working tree is not measured, so editing it during a run changes nothing):
 * **wall time** of ``python build_formulas.py --no-cache --out TMP --quiet`` on all cores and with
   ``--jobs 1`` (one process), medians of ``--repeat`` runs;
 * **per derivation and per library**: one ``--jobs 1`` build under cProfile (everything in one
-  process, so every library's self time is counted), self time summed by the package that owns
-  the function (sympy, symengine, flint, mpmath, numpy/scipy, jinja2, our derivations/ and suslov/,
-  builtins); the profiler roughly doubles the times, so the *shares* are what to read;
+  process, the imports included, so every library's self time is counted), self time summed by the
+  package that owns the function (sympy, symengine, flint, mpmath, numpy/scipy, jinja2, our
+  derivations/ and suslov/, builtins); the profiler roughly doubles the times and inflates code made
+  of many small Python calls (SymPy's) the most, so with py-spy installed (the ``bench`` extra) the
+  same build is also *sampled* from outside at 250 Hz: the unbiased shares;
 * **outputs**: the two revisions' trees compared file by file (the volatile timing files
   excluded), at the default pmax and, with ``--pmax 51``, at pmax 51 too; ``--pmax 101`` adds the
   all-cores wall time at pmax 101 for both.
@@ -27,6 +29,7 @@ import json
 import os
 import platform
 import re
+import shutil
 import statistics
 import subprocess
 import sys
@@ -49,9 +52,9 @@ LIBRARIES = ("sympy", "symengine", "flint", "mpmath", "gmpy2", "numpy", "scipy",
 PROFILE_DRIVER = r"""
 import cProfile, collections, json, pstats, sys
 sys.argv = ["build_formulas.py", *sys.argv[1:]]
-import build_formulas
 profile = cProfile.Profile()
-profile.enable()
+profile.enable()   # before the import: a revision whose build_formulas imports SymPy at the top pays it here too
+import build_formulas
 status = build_formulas.main(sys.argv[1:])
 profile.disable()
 owners = collections.Counter()
@@ -79,6 +82,35 @@ def run(root: Path, args: list, profile: bool = False) -> tuple[float, str]:
     return seconds, done.stdout + done.stderr
 
 
+def py_spy() -> str | None:
+    """The py-spy executable (``pip install py-spy``; the ``bench`` extra), or None."""
+    beside = Path(sys.executable).parent / "py-spy"
+    return str(beside) if beside.exists() else shutil.which("py-spy")
+
+
+def sampled(root: Path, out: Path) -> dict | None:
+    """Samples per owning package of one ``--jobs 1`` build under py-spy (250 Hz, sampled from outside:
+    no per-call cost, so a library of many small Python calls is not inflated the way cProfile inflates
+    it; time in a C extension counts for the Python function that called it).  None without py-spy."""
+    spy = py_spy()
+    if spy is None:
+        return None
+    raw = out.with_suffix(".raw")
+    env = dict(os.environ, PYTHONPATH=str(root))
+    subprocess.run([spy, "record", "-r", "250", "-f", "raw", "-o", str(raw), "--", sys.executable, "build_formulas.py",
+                    "--no-cache", "--jobs", "1", "--quiet", "--out", str(out)], cwd=root, env=env, check=True,
+                   capture_output=True)
+    owners = {}
+    for line in raw.read_text().splitlines():
+        stack, count = line.rsplit(" ", 1)
+        leaf = stack.split(";")[-1]
+        path = leaf[leaf.rfind("(") + 1:leaf.rfind(":")] if "(" in leaf else leaf
+        owner = next((lib for lib in LIBRARIES if path.startswith(f"{lib}/") or f"/{lib}/" in path), None)
+        owner = owner or ("derivations" if "derivations/" in path else "suslov" if "suslov/" in path else "other")
+        owners[owner] = owners.get(owner, 0) + int(count)
+    return owners
+
+
 def same_tree(a: Path, b: Path) -> list[str]:
     """The files that differ between two output trees (volatile timing files excluded)."""
     names = sorted((set(p.name for p in a.iterdir()) | set(p.name for p in b.iterdir())) - VOLATILE)
@@ -97,6 +129,7 @@ def measure(name: str, root: Path, tmp: Path, repeat: int, pmaxes: list) -> dict
     _, text = run(root, ["--no-cache", "--jobs", "1", "--out", str(tmp / f"{name}-profile")], profile=True)
     profile = json.loads(text.split("PROFILE ", 1)[1].splitlines()[0])
     out["profile"] = {"self": profile["self"], "derivations": {m[0]: float(m[1]) for m in LINE.findall(text)}}
+    out["sampled"] = sampled(root, tmp / f"{name}-sampled")
     for pmax in pmaxes:
         seconds, _ = run(root, ["--no-cache", "--quiet", "--pmax", str(pmax), "--out", str(tmp / f"{name}-p{pmax}")])
         out[f"pmax {pmax}"] = seconds
@@ -125,7 +158,18 @@ def report(data: dict) -> str:
                       key=lambda k: -base["profile"]["self"].get(k, 0)):
         b, n = base["profile"]["self"].get(lib, 0.0), now["profile"]["self"].get(lib, 0.0)
         lines.append(f"| {lib} | {b:.2f} | {100 * b / total_b:.0f}% | {n:.2f} | {100 * n / total_n:.0f}% |")
-    lines += [f"| total | {total_b:.2f} | | {total_n:.2f} | |", "",
+    lines += [f"| total | {total_b:.2f} | | {total_n:.2f} | |", ""]
+    if base.get("sampled") and now.get("sampled"):
+        sb, sn = base["sampled"], now["sampled"]
+        tb, tn = sum(sb.values()), sum(sn.values())
+        lines += ["Self time by library, the same build sampled by py-spy at 250 Hz (no per-call cost: the "
+                  "unbiased shares; C extensions count for their Python caller):", "",
+                  "| library | before (samples) | share | this revision (samples) | share |", "|---|---:|---:|---:|---:|"]
+        for lib in sorted(set(sb) | set(sn), key=lambda k: -sb.get(k, 0)):
+            lines.append(f"| {lib} | {sb.get(lib, 0)} | {100 * sb.get(lib, 0) / tb:.0f}% | {sn.get(lib, 0)} | "
+                         f"{100 * sn.get(lib, 0) / tn:.0f}% |")
+        lines += [f"| total | {tb} | | {tn} | |", ""]
+    lines += [
               "Seconds per derivation as the build reports them (one process, under the profiler):", "",
               "| derivation | before | this revision |", "|---|---:|---:|"]
     for name, seconds in base["profile"]["derivations"].items():
