@@ -4,6 +4,7 @@ The ring operations are compared with SymPy's rational functions on random eleme
 whole Frobenius recursion of ``derivations.sections.residue`` is rerun in SymPy's field ``QQ.frac_field(d)``
 (an independent arithmetic) and compared obstruction by obstruction.
 """
+import flint
 import pytest
 import sympy as sp
 from hypothesis import given, settings
@@ -112,3 +113,20 @@ def test_recursion_matches_sympy_field(monkeypatch, p_value):
     assert [(k, name) for k, name, _ in fast] == [(k, name) for k, name, _ in reference]
     assert all(sp.cancel(a - b) == 0 for (_, _, a), (_, _, b) in zip(fast, reference))
     assert any(value != 0 for _, _, value in reference) == (p_value % 2 == 0)
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.tuples(st.fractions(min_value=-5, max_value=5, max_denominator=7),
+                          st.lists(st.fractions(min_value=-9, max_value=9, max_denominator=11), min_size=1, max_size=4),
+                          st.integers(-4, 4)), max_size=6))
+def test_combination_is_the_sum_of_products(terms):
+    """LaurentQD.combination (one integer sum over a common denominator) against the ring's own + and *."""
+    def element(coefficients, shift):
+        poly = flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in coefficients])
+        return LaurentQD(poly, shift)
+
+    pairs = [(flint.fmpq(c.numerator, c.denominator), element(coefficients, shift)) for c, coefficients, shift in terms]
+    expected = LaurentQD.constant(0)
+    for c, x in pairs:
+        expected = expected + LaurentQD(flint.fmpq_poly([c])) * x
+    assert LaurentQD.combination(pairs) == expected

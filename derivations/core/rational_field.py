@@ -87,10 +87,15 @@ class LaurentQD:
         if not pairs:
             return cls(flint.fmpq_poly([]))
         low = min(x.shift for _, x in pairs)
-        total = flint.fmpq_poly([])
-        for c, x in pairs:
-            total += x.num.left_shift(x.shift - low) * c
-        return cls(total, low)
+        # over Z with one common denominator: a sum of fmpq_poly would reduce every partial sum by a gcd
+        denominators = [c.q * x.num.denom() for c, x in pairs]
+        common = flint.fmpz(1)
+        for q in denominators:
+            common = common // common.gcd(q) * q
+        total = flint.fmpz_poly([])
+        for (c, x), q in zip(pairs, denominators):
+            total += x.num.numer().left_shift(x.shift - low) * (c.p * (common // q))
+        return cls(flint.fmpq_poly(total, common), low)
 
     def __eq__(self, other) -> bool:
         return isinstance(other, LaurentQD) and self.shift == other.shift and self.num == other.num
