@@ -49,3 +49,10 @@ def test_build_table_is_the_committed_measurement():
         assert f"{row} {seconds('base', key)} | {seconds('this', key)} |" in readme, row
     assert (f"| SymPy's share of the self time (cProfile, one process) | {sympy_share('base')} | "
             f"{sympy_share('this')} |") in readme
+
+    def sampled_share(run):
+        samples = data[run]["sampled"]
+        return f"{round(100 * samples['sympy'] / sum(samples.values()))}%"
+
+    assert (f"| SymPy's share of the self time (py-spy samples, one process) | {sampled_share('base')} | "
+            f"{sampled_share('this')} |") in readme
