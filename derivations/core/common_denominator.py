@@ -13,7 +13,7 @@ numerator has as many monomials as ``together``'s; where it cannot, it says ``No
 denominators, taken *base by base*: a term is a rational times powers of bases, a base that is a sum
 is made primitive (rational content and common monomial taken out) and bases are identified by
 structure, never factored; a sum inside a power is combined first and its numerator becomes a base.
-Here the same recursion runs on polynomials (:func:`_parts`), with bases identified as follows:
+Here the same recursion runs on polynomials (``_Recursion.parts``), with bases identified as follows:
 
 * a denominator that is an *expanded* polynomial (a sum of monomials) is identified by its primitive
   part, the canonical polynomial SymPy's primitive sum of monomials is (:func:`_primitive`), so these
@@ -31,8 +31,9 @@ one is not constant.  Otherwise N is SymPy's numerator times a monomial and a co
 no monomial count (a zero polynomial counts as one term, ``0``, as ``sympy.expand`` writes it).
 Anything outside the recursion (functions, non-integer exponents, floats, complex numbers) is
 ``None`` too.  ``tests/test_common_denominator.py`` compares the count with ``together``'s on
-Hypothesis-generated expressions (nested fractions, shared and opposite bases, cancellations) and on
-every input of the build's certificates.
+Hypothesis-generated expressions (nested fractions, shared and opposite bases, cancellations) and
+runs the Kovalevskaya and Galois derivations with and without this module; tests/test_build.py
+compares every certificate of the build with the committed ``generated/``.
 """
 from __future__ import annotations
 
