@@ -1,8 +1,8 @@
 """The per-p logarithm table's factorisations by python-flint against SymPy's (residue.logarithm_verdict).
 
 ``positive_factors``, ``printed_parts`` and ``flint_factor.factor_list_univariate`` replace
-``nowhere_zero_for_positive_d``, ``str(sympy.factor(v))``, ``typeset.breakable_product(v)`` and
-``sympy.factor_list``: the independent route is SymPy itself, on every non-zero Frobenius obstruction
+``nowhere_zero_for_positive_d`` (kept here as the reference), ``str(sympy.factor(v))``,
+``typeset.breakable_product(v)`` and ``sympy.factor_list``: the independent route is SymPy itself, on every non-zero Frobenius obstruction
 of p <= 30 and on random Laurent polynomials (odd powers, mixed signs, repeated factors, shifts of
 either sign).  The texts must be identical: they are printed in the tables and certificates.
 """
@@ -23,8 +23,25 @@ from derivations.core.typeset import breakable_product
 from derivations.sections import residue
 
 
+def nowhere_zero_for_positive_d(value: sp.Expr) -> bool:
+    """The SymPy reference (the build's own test before python-flint): True when every irreducible
+    factor of ``value`` is +-d^k or a polynomial in d^2 with coefficients of one sign."""
+    num, den = sp.fraction(sp.together(value))
+    for expr in (num, den):
+        for factor, _ in sp.factor_list(expr)[1]:
+            poly = sp.Poly(factor, d)
+            if poly.is_monomial:
+                continue
+            coeffs = poly.all_coeffs()
+            if not (all(c >= 0 for c in coeffs) or all(c <= 0 for c in coeffs)):
+                return False
+            if any(m[0] % 2 for m in poly.monoms()):
+                return False
+    return value != 0
+
+
 def sympy_route(value: sp.Expr) -> tuple:
-    return residue.nowhere_zero_for_positive_d(value), str(sp.factor(value)), breakable_product(value)
+    return nowhere_zero_for_positive_d(value), str(sp.factor(value)), breakable_product(value)
 
 
 def flint_route(value: LaurentQD) -> tuple:

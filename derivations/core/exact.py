@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import symengine as se
 import sympy as sp
-from flint import fmpq, fmpq_mpoly_ctx
+from flint import fmpq_mpoly_ctx
 
 from derivations.core.certificates import (
     Certificate,
@@ -180,8 +180,11 @@ def _zero_without_together(expr: sp.Expr, domain: Domain) -> NormalForm | None:
     pair = common_denominator(expr, tuple(ring.names()), ring)
     if pair is None:
         return None
-    numerator, denominator = (_reduce_poly(poly, ring, index, domain) for poly in pair)
-    if not numerator.is_zero() or denominator.is_zero():
+    numerator = _reduce_poly(pair[0], ring, index, domain)
+    if not numerator.is_zero():
+        return None
+    denominator = _reduce_poly(pair[1], ring, index, domain)
+    if denominator.is_zero():
         return None
     return NormalForm(numerator, denominator, max(1, len(pair[0].coeffs())), tuple(gens))
 

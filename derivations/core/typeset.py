@@ -179,10 +179,15 @@ def breakable_product(expr) -> str:
     part as a fraction, then each polynomial factor, so a table cell can wrap it.
     """
     numerator, denominator = sp.fraction(sp.cancel(expr))
-    lead, factor_powers = sp.factor_list(numerator)   # primitive factors, positive leading coefficients
-    polynomial = [base**power for base, power in factor_powers if base.is_Add]
-    lead = lead * sp.Mul(*[base**power for base, power in factor_powers if not base.is_Add]) / denominator
-    return breakable_factors(lead, polynomial, expr)
+    lead, polynomial = lead_and_sums(*sp.factor_list(numerator))   # primitive factors, positive leading coefficients
+    return breakable_factors(lead / denominator, polynomial, expr)
+
+
+def lead_and_sums(content, factor_powers: list) -> tuple:
+    """A ``sympy.factor_list`` result split into the content times the powers of its monomial factors,
+    and the list of the powers of its sums (in the list's order)."""
+    sums = [base**power for base, power in factor_powers if base.is_Add]
+    return content * sp.Mul(*[base**power for base, power in factor_powers if not base.is_Add]), sums
 
 
 def breakable_factors(lead, polynomial: list, expr) -> str:

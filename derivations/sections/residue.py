@@ -62,7 +62,7 @@ from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.rational_field import LaurentQD
 from derivations.core.result import DerivationResult
 from derivations.core.symbols import I11, I13, I22, I23, c, d, from_symengine, p, r
-from derivations.core.typeset import breakable_factors, latex
+from derivations.core.typeset import breakable_factors, latex, lead_and_sums
 from derivations.sections import physical_bodies
 from derivations.sections.special_case import C_EXT, PD_DOMAIN, poisson_matrix
 
@@ -245,15 +245,14 @@ def _coefficients(value: LaurentQD) -> tuple[list, list]:
 
 
 def positive_factors(value: LaurentQD) -> bool:
-    """:func:`nowhere_zero_for_positive_d` of ``num d^shift`` from python-flint's factors of ``num`` (the
-    same irreducible factors as SymPy's up to sign and content, which the test ignores)."""
+    """True when ``v = num d^shift`` is non-zero and every irreducible factor of ``num`` is a polynomial in
+    d^2 with coefficients of one sign, so v vanishes for no d > 0 (python-flint's factors; ``num`` has a
+    non-zero constant term, so d itself is never one of them)."""
     if value.is_zero():
         return False
     poly = flint_factor.integer_poly(_num_coefficients(value))[0]
     for factor, _ in poly.factor()[1]:
         coeffs = [int(c) for c in factor.coeffs()]
-        if factor.degree() == 1 and coeffs[0] == 0:     # the monomial d
-            continue
         if not (all(c >= 0 for c in coeffs) or all(c <= 0 for c in coeffs)):
             return False
         if any(c and k % 2 for k, c in enumerate(coeffs)):
@@ -266,26 +265,9 @@ def printed_parts(value: LaurentQD) -> tuple[str, str]:
     (:mod:`derivations.core.flint_factor`: the same SymPy objects, so the same text)."""
     numerator, denominator = _coefficients(value)
     factored = flint_factor.factor_univariate(numerator, denominator, d)
-    lead, factors = flint_factor.factor_list_univariate(_num_coefficients(value), d)
-    polynomial = [base**power for base, power in factors if base.is_Add]
-    lead = lead * sp.Mul(*[base**power for base, power in factors if not base.is_Add]) * d**value.shift
+    lead, polynomial = lead_and_sums(*flint_factor.factor_list_univariate(_num_coefficients(value), d))
+    lead = lead * d**value.shift
     return str(factored), breakable_factors(lead, polynomial, value.to_sympy(d) if not polynomial else None)
-
-
-def nowhere_zero_for_positive_d(value: sp.Expr) -> bool:
-    """True when every irreducible factor of ``value`` is +-d^k or a polynomial in d^2 with positive coefficients."""
-    num, den = sp.fraction(sp.together(value))
-    for expr in (num, den):
-        for factor, _ in sp.factor_list(expr)[1]:
-            poly = sp.Poly(factor, d)
-            if poly.is_monomial:
-                continue
-            coeffs = poly.all_coeffs()
-            if not (all(c >= 0 for c in coeffs) or all(c <= 0 for c in coeffs)):
-                return False
-            if any(m[0] % 2 for m in poly.monoms()):
-                return False
-    return value != 0
 
 
 def logarithm_verdict(p_value: int) -> tuple[str, str, int, list[str], float]:
