@@ -166,12 +166,76 @@ def test_leading_coefficient_at_double_pole_against_the_limit():
     from derivations.sections.galois import leading_coefficient_at_double_pole
 
     z, m = sp.symbols("z m")
-    K = sp.QQ_I.frac_field(m)
+    R = sp.QQ_I[m]
     num = 3 * z**3 - m * z + 1
-    den = (z - sp.I) ** 2 * (z + m) * (2 * z - 1)
-    value = leading_coefficient_at_double_pole(sp.Poly(num, z, domain=K), sp.Poly(sp.expand(den), z, domain=K), sp.I)
-    expected = sp.limit((z - sp.I) ** 2 * num / den, z, sp.I)
-    assert sp.simplify(K.to_sympy(value) - expected) == 0
+    for point, den in ((sp.I, (z - sp.I) ** 2 * (z + m) * (2 * z - 1)),
+                       (-sp.I / m, (m * z + sp.I) ** 2 * (z + m) * (2 * z - 1)),      # a point u/v, v = m
+                       (-sp.I * m, (z + sp.I * m) ** 2 * (z**2 + 1))):
+        value = leading_coefficient_at_double_pole(sp.Poly(num, z, domain=R), sp.Poly(sp.expand(den), z, domain=R), point)
+        expected = sp.limit((z - point) ** 2 * num / den, z, point)
+        assert sp.simplify(R.get_field().to_sympy(value) - expected) == 0, point
     with pytest.raises(ArithmeticError):
-        leading_coefficient_at_double_pole(sp.Poly(num, z, domain=K), sp.Poly(sp.expand((z - sp.I) * (z + m) ** 2), z,
-                                                                                domain=K), sp.I)
+        leading_coefficient_at_double_pole(sp.Poly(num, z, domain=R), sp.Poly(sp.expand((z - sp.I) * (z + m) ** 2), z,
+                                                                                domain=R), sp.I)
+
+
+def _direct_obstruction(num, rest, point, delta):
+    """The obstruction sum_j r_j y_(delta-j) as a reduced fraction (n, d) of fmpq_poly: the plain convolution
+    over the reduced Laurent coefficients, no clearing factor and no recursion of fixed length."""
+    import flint
+
+    from derivations.sections.local_obstruction import _reduced, laurent_fractions
+
+    r = laurent_fractions(num, rest, point, delta)
+    mu, r0 = flint.fmpq(1 - delta, 2), flint.fmpq(delta * delta - 1, 4)
+    y = [(flint.fmpq_poly([1]), flint.fmpq_poly([1]))]
+
+    def convolution(k):
+        n, d = flint.fmpq_poly([]), flint.fmpq_poly([1])
+        for j in range(1, k + 1):
+            (rn, rd), (yn, yd) = r[j], y[k - j]
+            n, d = _reduced(n * rd * yd + rn * yn * d, d * rd * yd)
+        return n, d
+
+    for k in range(1, delta):
+        n, d = convolution(k)
+        y.append(_reduced(n, d * ((mu + k) * (mu + k - 1) - r0)))
+    return convolution(delta)
+
+
+@pytest.mark.parametrize("delta", [1, 2, 3, 7, 12])
+@pytest.mark.parametrize("seed", range(4))
+def test_log_obstruction_equals_the_plain_convolution(delta, seed):
+    """P = E^delta * obstruction, on random potentials r = num / (zeta^2 rest) with r_0 = (delta^2-1)/4 and a
+    rest of up to four terms (so the fixed-length recursion of local_obstruction._convolutions uses both
+    a and b), against :func:`_direct_obstruction`."""
+    import random
+
+    import flint
+
+    from derivations.sections.local_obstruction import log_obstruction
+
+    rng = random.Random(100 * delta + seed)
+    m = flint.fmpq_poly([0, 1])
+    poly = lambda: flint.fmpq_poly([rng.randint(-3, 3) for _ in range(rng.randint(1, 3))])  # noqa: E731
+    rest = [1 + m * m] + [poly() for _ in range(rng.randint(1, 3))]
+    num = [flint.fmpq(delta * delta - 1, 4) * rest[0]] + [poly() for _ in range(rng.randint(1, 4))]
+    zero = flint.fmpq_poly([])
+    r0_ok, P, E = log_obstruction(num, rest, zero, delta)
+    n, d = _direct_obstruction(num, rest, zero, delta)
+    assert r0_ok and P * d == n * E**delta
+
+
+@pytest.mark.parametrize("p_value", [2, 9, 24, 41])
+def test_log_obstruction_of_the_suslov_potential_equals_the_plain_convolution(p_value):
+    import flint
+
+    from derivations.sections import galois
+    from derivations.sections.local_obstruction import log_obstruction
+
+    numerator, rests, points = galois._obstruction_data()
+    num_p = [sum((poly * p_value**k for k, poly in c.items()), flint.fmpq_poly([])) for c in numerator]
+    for name, delta in (("s1", p_value), ("s3", 2)):
+        _, P, E = log_obstruction(num_p, rests[name], points[name], delta)
+        n, d = _direct_obstruction(num_p, rests[name], points[name], delta)
+        assert P * d == n * E**delta, name
