@@ -183,13 +183,11 @@ EXACT_POINTS = ((Fraction(2, 3), Fraction(3, 4), Fraction(5, 4)), (Fraction(5, 4
 def _at(poly, x: Fraction, d: Fraction) -> tuple:
     """(A, B) with poly(x, d, i) = A + i B, exactly (poly of degree <= 1 in i, python-flint fmpq_mpoly).
 
-    x and d are substituted as constants (``compose``), leaving a polynomial in i alone: 4 times faster at
-    p = 201 than two full evaluations."""
-    ctx = poly.context()
-    constant = lambda v: ctx.constant(flint.fmpq(v.numerator, v.denominator))  # noqa: E731
-    in_i = poly.compose(constant(x), constant(d), ctx.gens()[2])
+    x, then d, are substituted as constants (``subs``), leaving a polynomial in i alone: at p = 201, 8 times
+    faster than two full evaluations and twice as fast as one ``compose`` of both."""
+    in_i = poly.subs({"x": flint.fmpq(x.numerator, x.denominator)}).subs({"d": flint.fmpq(d.numerator, d.denominator)})
     parts = {monomial[2]: coefficient for monomial, coefficient in zip(in_i.monoms(), in_i.coeffs())}
-    if set(parts) - {0, 1}:
+    if set(parts) - {0, 1} or any(monomial[:2] != (0, 0) for monomial in in_i.monoms()):
         raise ArithmeticError("_at: a numerator of degree > 1 in i (not in normal form modulo i^2 + 1)")
     A, B = (parts.get(k, flint.fmpq(0)) for k in (0, 1))
     return Fraction(int(A.p), int(A.q)), Fraction(int(B.p), int(B.q))
