@@ -54,7 +54,7 @@ from derivations.core.exact import Domain, Extension, cancelled, certify_zero
 from derivations.core.result import DerivationResult
 from derivations.core.symbols import g1, g2, g3, p, w1, w2
 from derivations.core.typeset import latex
-from derivations.sections.local_obstruction import log_obstruction, taylor_shift
+from derivations.sections.local_obstruction import log_obstruction
 
 NAME = "galois"
 TITLE = "Differential Galois analysis and logarithms at the singular points (section 5.2)"
@@ -113,20 +113,34 @@ def printed_PQ():
     return P, Q
 
 
-def _shifted(poly: sp.Poly, point, terms: int) -> list:
-    """The first ``terms`` coefficients (low to high) of poly(point + zeta), by repeated synthetic division."""
-    high_to_low = list(poly.rep.to_list()) if hasattr(poly.rep, "to_list") else list(poly.all_coeffs())
-    return taylor_shift(high_to_low[::-1], point, poly.domain.zero, terms)
+def _homogeneous_value(poly: sp.Poly, u, v):
+    """``v^D poly(u/v)`` (D = degree in z) for ``u``, ``v`` in the Poly's coefficient ring, by Horner's rule."""
+    coefficients = list(poly.rep.to_list())      # high to low, elements of the coefficient ring
+    value, power = coefficients[0], poly.domain.one
+    for c in coefficients[1:]:
+        power = power * v
+        value = value * u + c * power
+    return value
 
 
 def leading_coefficient_at_double_pole(num: sp.Poly, den: sp.Poly, point):
     """``r_0 = lim (z - point)^2 num/den`` where ``point`` is a double root of ``den``: ``num(point) / c2`` with
-    ``den(point + zeta) = c2 zeta^2 + ...`` (exact in the Polys' field; raises if the root is not double)."""
-    K = num.domain
-    c0, c1, c2 = (_shifted(den, K.convert(point), 3) + [K.zero] * 3)[:3]
+    ``c2 = den''(point)/2``, an element of the coefficient ring's fraction field (raises if the root is not double).
+
+    ``num``, ``den``: Polys in z over a polynomial ring (``QQ_I[m, p]``); ``point = u/v`` with u, v in that ring.
+    Everything is evaluated in the ring, homogeneously (``v^D f(u/v)``), and divided once in the field: no gcd
+    per step (the synthetic division in ``QQ_I(m, p)`` took 0.3 s of the cold build under cProfile, 0.03 s here).
+    """
+    ring = num.domain
+    u, v = (ring.from_sympy(part) for part in sp.fraction(sp.sympify(point)))
+    den1 = den.diff()
+    c0, c1, c2 = (_homogeneous_value(f, u, v) for f in (den, den1, den1.diff()))
     if c0 or c1 or not c2:
         raise ArithmeticError(f"z = {point} is not a double root")
-    return _shifted(num, K.convert(point), 1)[0] / c2
+    field = ring.get_field()
+    # num(point) = N / v^deg(num), c2 = C2 / (2 v^(deg(den) - 2))
+    return (field.convert_from(2 * _homogeneous_value(num, u, v) * v ** (den.degree() - 2), ring)
+            / field.convert_from(c2 * v ** num.degree(), ring))
 
 
 POINTS = {"s0": sp.Integer(0), "s1": sp.I, "s2": -sp.I, "s3": -sp.I * m, "s4": -sp.I / m}
@@ -238,8 +252,9 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     # singular points and exponent differences, in the parametrisation c, d = (m^2 +- 1)/(2m)
     to_m = {cc: (m**2 + 1) / (2 * m)}
     num_e, den_e = reduced_form()
-    Kp = sp.QQ_I.frac_field(m, p)
-    num, den = sp.Poly(num_e, z, domain=Kp), sp.Poly(den_e, z, domain=Kp)
+    ring_mp = sp.QQ_I[m, p]
+    num, den = sp.Poly(num_e, z, domain=ring_mp), sp.Poly(den_e, z, domain=ring_mp)
+    Kp = ring_mp.get_field()
     points = POINTS
     d_m = (m**2 - 1) / (2 * m)
     c_sing = certify_zero(log, "Q vanishes at s0 = 0, s1,2 = +-i, s3,4 = -i(c -+ d)", "eq:Q",
