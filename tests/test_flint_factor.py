@@ -140,3 +140,83 @@ def test_rational_polys_are_the_parsed_forms():
         ff, _ = construct(p)
         parsed, built = [_poly(a) for a in rational_forms(ff)], rational_polys(ff)
         assert [(x.rep, x.gens, x.domain) for x in parsed] == [(x.rep, x.gens, x.domain) for x in built]
+
+
+# ---- several variables: the written-out basis rows (numerator_to_tanh_sech), generators T, c, d
+
+T_, c_, d_ = sp.symbols("T c d")
+monomial = st.tuples(st.integers(0, 2), st.integers(0, 1), st.integers(0, 2))
+trivariate = st.dictionaries(monomial, st.integers(-4, 4).filter(bool), min_size=1, max_size=4)
+
+
+def _mpoly_of(terms_list: list, ctx, order: tuple):
+    """The product of the given polynomials ({(T, c, d) exponents: coefficient}) in ``ctx`` (generators ``order``)."""
+    where = {"T": 0, "c": 1, "d": 2}
+    product = ctx.constant(1)
+    for terms in terms_list:
+        product *= ctx.from_dict({tuple(e[where[str(x)]] for x in order): v for e, v in terms.items()})
+    return product
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(trivariate, min_size=1, max_size=3), st.lists(trivariate, min_size=1, max_size=2),
+       st.booleans(), st.fractions(min_value=-5, max_value=5, max_denominator=6).filter(bool))
+def test_several_variables_same_object_as_sympy_factor(num_factors, den_factors, shared, scale):
+    """Random products (negative leading coefficients in either order of the generators, repeated and shared
+    factors, a rational scale): the same SymPy object as ``sympy.factor``, by srepr."""
+    import flint
+
+    from derivations.core.flint_factor import factor_multivariate, generator_order
+
+    if shared:
+        den_factors = den_factors + num_factors[:1]
+    order = generator_order({T_, c_, d_})
+    assert [str(x) for x in order] == ["c", "d", "T"]       # SymPy's order: lower-case letters before 'T'
+    ctx = flint.fmpq_mpoly_ctx.get(tuple(str(x) for x in order), "lex")
+    N = _mpoly_of(num_factors, ctx, order) * flint.fmpq(scale.numerator, scale.denominator)
+    D = _mpoly_of(den_factors, ctx, order)
+    if D.is_zero():
+        return
+    as_expr = lambda P: sp.Add(*(sp.Rational(int(v.p), int(v.q)) * sp.Mul(*(x ** int(e) for x, e in zip(order, m)))  # noqa: E731
+                                 for m, v in zip(P.monoms(), P.coeffs())))
+    expected = sp.factor(as_expr(N) / as_expr(D))
+    assert sp.srepr(factor_multivariate(N, D, order)) == sp.srepr(expected)
+
+
+def test_several_variables_refuses_another_order():
+    import flint
+
+    from derivations.core.flint_factor import factor_multivariate
+
+    ctx = flint.fmpq_mpoly_ctx.get(("T", "c", "d"), "lex")
+    T, c, d = ctx.gens()
+    try:
+        factor_multivariate(T - d, c + 1, (T_, c_, d_))
+    except ValueError:
+        return
+    raise AssertionError("symbols not in SymPy's generator order must be refused")
+
+
+def test_written_out_basis_rows_as_sympy_factor_gives_them(monkeypatch):
+    """numerator_to_tanh_sech with FLINT's factors against the same function with sympy.factor, p = 1, 3, 5."""
+    from derivations.sections import meromorphic, meromorphic_printed
+
+    def rows():
+        return [meromorphic_printed.written_out(meromorphic.certify_p(_Log(), p)) for p in (1, 3, 5)]
+
+    fast = rows()
+
+    def through_sympy(numerator, denominator, symbols):
+        as_expr = lambda P: sp.Add(*(sp.Rational(int(v.p), int(v.q)) * sp.Mul(*(x ** int(e) for x, e in zip(symbols, m)))  # noqa: E731
+                                     for m, v in zip(P.monoms(), P.coeffs())))
+        return sp.factor(as_expr(numerator) / as_expr(denominator))
+
+    monkeypatch.setattr(meromorphic_printed, "factor_multivariate", through_sympy)
+    assert [[sp.srepr(x) for x in r] for r in fast] == [[sp.srepr(x) for x in r] for r in rows()]
+
+
+class _Log:
+    """A certificate log that keeps nothing (certify_p records into it)."""
+
+    def record(self, certificate):
+        return certificate

@@ -1,4 +1,4 @@
-"""``sympy.factor`` of a rational function of one variable over Q or Q(i), computed by python-flint.
+"""``sympy.factor`` of a rational function over Q (one variable or several) or Q(i) (one), computed by python-flint.
 
 Used where the build prints a coefficient in factored form (paper section 6.2, ``eq:p1``,
 ``eq:p23``: the written-out P1, P2, P3; section 5.1, ``eq:ghyp`` and ``poly_F2``: the F and F-hat
@@ -25,6 +25,7 @@ from fractions import Fraction
 import flint
 import sympy as sp
 from sympy.core.exprtools import _keep_coeff
+from sympy.polys.polyutils import _sort_gens
 
 
 def integer_poly(coefficients: list) -> tuple[flint.fmpz_poly, Fraction]:
@@ -87,6 +88,60 @@ def factor_list_univariate(coefficients: list, x: sp.Symbol) -> tuple[sp.Rationa
     lead = Fraction(int(content)) * scale
     return sp.Rational(lead.numerator, lead.denominator), [(_as_expr(f, x), int(e)) for f, e in ordered]
 
+
+
+def _integer_mpoly(poly, ctx) -> tuple:
+    """(``fmpz_mpoly`` in ``ctx``, rational scale) with the ``fmpq_mpoly`` ``poly`` = scale * that polynomial."""
+    coefficients = poly.coeffs()
+    lcm = math.lcm(*(int(c.q) for c in coefficients)) if coefficients else 1
+    terms = {tuple(int(e) for e in m): int(c.p) * (lcm // int(c.q)) for m, c in zip(poly.monoms(), coefficients)}
+    return ctx.from_dict(terms), Fraction(1, lcm)
+
+
+def _mpoly_expr(poly, symbols: tuple) -> sp.Expr:
+    return sp.Add(*(sp.Integer(int(c)) * sp.Mul(*(x ** int(e) for x, e in zip(symbols, m)))
+                    for m, c in zip(poly.monoms(), poly.coeffs())))
+
+
+def generator_order(symbols) -> tuple:
+    """The order in which SymPy makes ``symbols`` a polynomial's generators (``Poly(expr).gens``)."""
+    return tuple(_sort_gens(list(symbols)))
+
+
+def factor_multivariate(numerator, denominator, symbols: tuple) -> sp.Expr:
+    """``sympy.factor(N/D)`` for N, D ``fmpq_mpoly`` in generators named as ``symbols``, in SymPy's order.
+
+    ``symbols`` must be in the order SymPy gives a polynomial's generators (:func:`generator_order`: x, y,
+    z, then p..w, then a..o, then other names; not alphabetical) and the polynomials' context
+    lexicographic in that order: then FLINT's irreducible factors over Z (primitive, leading coefficient
+    positive in that order) are SymPy's, and the normal form of the module docstring is the same object.
+
+    >>> import flint, sympy as sp
+    >>> T, d = sp.symbols("T d")
+    >>> generator_order({T, d})
+    (d, T)
+    >>> ctx = flint.fmpq_mpoly_ctx.get(("d", "T"), "lex")
+    >>> dd, t = ctx.gens()
+    >>> factor_multivariate((dd**2 - t) * (1 - t * dd), 3 * dd**2 + 3, (d, T))
+    -(-T + d**2)*(T*d - 1)/(3*(d**2 + 1))
+    >>> _ == sp.factor((d**2 - T) * (1 - T * d) / (3*d**2 + 3))
+    True
+    """
+    if tuple(symbols) != generator_order(symbols):
+        raise ValueError(f"symbols {symbols} are not in SymPy's generator order {generator_order(symbols)}")
+    ctx = flint.fmpz_mpoly_ctx.get(tuple(str(x) for x in symbols), "lex")
+    num, num_scale = _integer_mpoly(numerator, ctx)
+    den, den_scale = _integer_mpoly(denominator, ctx)
+    if den.is_zero():
+        raise ZeroDivisionError("denominator is the zero polynomial")
+    if num.is_zero():
+        return sp.Integer(0)
+    num_content, num_factors = num.factor()
+    den_content, den_factors = den.factor()
+    coefficient = Fraction(int(num_content)) * num_scale / (Fraction(int(den_content)) * den_scale)
+    product = sp.Mul(*([_mpoly_expr(f, symbols) ** e for f, e in num_factors]
+                       + [_mpoly_expr(f, symbols) ** -e for f, e in den_factors]))
+    return _keep_coeff(sp.Rational(coefficient.numerator, coefficient.denominator), product)
 
 # --- over the Gaussian rationals Q(i): products of linear factors --------------------------------------
 # python-flint 0.9 factors over Z only.  A polynomial f in Q(i)[x] whose roots all lie in Q(i) (the F and

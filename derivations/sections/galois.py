@@ -40,6 +40,7 @@ import itertools
 from fractions import Fraction
 
 import flint
+import symengine as se
 import sympy as sp
 
 from derivations.core import paper
@@ -49,6 +50,7 @@ from derivations.core.certificates import (
     Outcome,
     stopwatch,
 )
+from derivations.core.common_denominator import polynomial
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, cancelled, certify_zero
 from derivations.core.result import DerivationResult
@@ -76,6 +78,7 @@ def riccati_coefficients():
     return A, sp.Integer(0), C
 
 
+@functools.cache   # run and reduced_form both ask: the Polys are built once
 def derived_pqr():
     """p(z), q(z) of eq:2rzedu (expressions) and the numerator N of r = N/Q (a polynomial).
 
@@ -177,13 +180,38 @@ def _m_poly(expr) -> flint.fmpq_poly:
     return flint.fmpq_poly([flint.fmpq(int(sp.Rational(c).p), int(sp.Rational(c).q)) for c in coeffs])
 
 
+_WMP = flint.fmpq_mpoly_ctx.get(("w", "m", "p"), "lex")
+
+
+def _by_power_of_w(poly) -> dict:
+    """``{j: {k: coefficient of w^j p^k as an fmpq_poly in m}}`` of an ``fmpq_mpoly`` in (w, m, p)."""
+    out: dict = {}
+    for (j, i, k), c in zip(poly.monoms(), poly.coeffs()):
+        out.setdefault(int(j), {}).setdefault(int(k), {})[int(i)] = c
+    return {j: {k: flint.fmpq_poly([terms.get(i, 0) for i in range(max(terms) + 1)]) for k, terms in by_p.items()}
+            for j, by_p in out.items()}
+
+
 @functools.cache
 def _obstruction_data():
-    """The p-independent flint data of the per-p decision (built once per process)."""
-    num_w, den_w = rotated_form()
-    numerator = [{k: _m_poly(v) for (k,), v in sp.Poly(c, p).terms()} for c in sp.Poly(num_w, w).all_coeffs()[::-1]]
-    rests = {name: [_m_poly(c) for c in sp.Poly(sp.cancel(den_w / (w - pt) ** 2), w).all_coeffs()[::-1]]
-             for name, pt in POINTS_W.items()}
+    """The p-independent flint data of the per-p decision (built once per process).
+
+    ``rt(w) = num_w/den_w`` read into python-flint (symengine's expansion, the shared polynomial reader),
+    ``den_w`` divided by ``(w - point)^2`` exactly there (a remainder raises): no SymPy ``cancel``."""
+    index = {"w": 0, "m": 1, "p": 2}
+    num_w, den_w = (polynomial(se.expand(se.sympify(e)), _WMP, index) for e in rotated_form())
+    numerator = _by_power_of_w(num_w)
+    numerator = [numerator.get(j, {}) for j in range(num_w.degrees()[0] + 1)]
+    gw, gm, _ = _WMP.gens()
+    rests = {}
+    for name, pt in (("s1", _WMP.constant(1)), ("s3", -gm)):
+        rest, remainder = divmod(den_w, (gw - pt) ** 2)
+        if not remainder.is_zero():
+            raise ArithmeticError(f"{name}: (w - point)^2 does not divide the denominator")
+        by_w = _by_power_of_w(rest)
+        rests[name] = [by_w.get(j, {}).get(0, flint.fmpq_poly([])) for j in range(rest.degrees()[0] + 1)]
+        if any(k for by_p in by_w.values() for k in by_p):
+            raise ArithmeticError("the denominator depends on p")
     return numerator, rests, {name: _m_poly(pt) for name, pt in POINTS_W.items()}
 
 

@@ -12,6 +12,7 @@ from fractions import Fraction
 
 import flint
 import mpmath
+import symengine as se
 import sympy as sp
 
 from derivations.core import paper
@@ -21,8 +22,9 @@ from derivations.core.certificates import (
     Outcome,
     stopwatch,
 )
+from derivations.core.common_denominator import polynomial
 from derivations.core.errata import erratum
-from derivations.core.flint_factor import factor_gaussian
+from derivations.core.flint_factor import factor_gaussian, factor_multivariate, generator_order
 from derivations.core.result import DerivationResult
 from derivations.core.typeset import latex
 from derivations.sections.meromorphic_ring import (
@@ -180,7 +182,7 @@ def numerator_to_tanh_sech(numerator, p: int, scale: sp.Expr):
     ``numerator``: N in Q[x, d] (python-flint, the basis ring's variables (x, d, i), free of i);
     ``scale``: a SymPy factor free of x.  With x = e^t, ``x^m/(1+x^2)^p = ((1+T)/2)^(m-p) ... `` gives
     ``2^-p (1+T)^(m-p) S^(2p-m)`` (m >= p) or ``2^-p (1-T)^(p-m) S^m``; the sum is reduced modulo
-    S^2 + T^2 - 1 and split as P0 + S P1, all in python-flint; each part is printed factored by SymPy.
+    S^2 + T^2 - 1 and split as P0 + S P1, all in python-flint; each part is factored by FLINT into SymPy's ``factor`` form.
     """
     T, S, dd = TS_CTX.gens()
     one = TS_CTX.constant(1)
@@ -194,13 +196,22 @@ def numerator_to_tanh_sech(numerator, p: int, scale: sp.Expr):
     for (a, b, kd), c in zip(total.monoms(), total.coeffs()):
         parts[b % 2] += c * T**a * dd**kd * (one - T * T) ** (b // 2)
     Tn, Sn, ds = sp.symbols("T S d")
+    gens = generator_order({Tn, ds} | sp.sympify(scale).free_symbols)
+    ctx = flint.fmpq_mpoly_ctx.get(tuple(str(x) for x in gens), "lex")
+    index = {str(x): k for k, x in enumerate(gens)}
+    # scale / 2^p as N/D in the same ring (its factors are products of powers of polynomials)
+    scale_num, scale_den = (polynomial(se.expand(se.sympify(e)), ctx, index) for e in sp.fraction(scale / 2**p))
     factored = 0
     for key, part in zip((1, Sn), parts):
         if part.is_zero():
             continue
-        value = sp.Add(*(sp.Rational(int(c.p), int(c.q)) * Tn**int(a) * ds**int(kd)
-                         for (a, _, kd), c in zip(part.monoms(), part.coeffs())))
-        factored += sp.factor(value * scale / 2**p) * key
+        terms = {}
+        for (a, _, kd), c in zip(part.monoms(), part.coeffs()):
+            exponents = [0] * len(gens)
+            exponents[index["T"]], exponents[index["d"]] = int(a), int(kd)
+            terms[tuple(exponents)] = c
+        # sympy.factor(part * scale / 2^p), by FLINT (derivations.core.flint_factor: the same expression)
+        factored += factor_multivariate(ctx.from_dict(terms) * scale_num, scale_den, gens) * key
     return factored.subs({Tn: TANH, Sn: SECH})
 
 
