@@ -118,7 +118,11 @@ def test_f_fhat_tables_as_sympy_factors_them():
     """Every entry of the F / F-hat coefficient tables (odd p <= 7) against SymPy's own factorisation over Q(i)."""
     from derivations.core.options import BuildOptions
     from derivations.core.typeset import latex
-    from derivations.sections.meromorphic_printed import coefficient_tables, hypergeometric_polynomials, to_sympy
+    from derivations.sections.meromorphic_printed import (
+        coefficient_tables,
+        hypergeometric_polynomials,
+        to_sympy,
+    )
 
     xs, ds = sp.symbols("x d")
     rows = {(r["p"], r["k"]): r for r in coefficient_tables(BuildOptions(pmax=7))["f"]}
@@ -134,7 +138,12 @@ def test_f_fhat_tables_as_sympy_factors_them():
 
 def test_rational_polys_are_the_parsed_forms():
     """rational_polys (built from coefficients) equals Poly(rational_forms(...)) over QQ(d), p = 1, 3, 5."""
-    from derivations.sections.first_integrals import _poly, construct, rational_forms, rational_polys
+    from derivations.sections.first_integrals import (
+        _poly,
+        construct,
+        rational_forms,
+        rational_polys,
+    )
 
     for p in (1, 3, 5):
         ff, _ = construct(p)

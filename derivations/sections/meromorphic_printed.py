@@ -24,7 +24,11 @@ from derivations.core.certificates import (
 )
 from derivations.core.common_denominator import polynomial
 from derivations.core.errata import erratum
-from derivations.core.flint_factor import factor_gaussian, factor_multivariate, generator_order
+from derivations.core.flint_factor import (
+    factor_gaussian,
+    factor_multivariate,
+    generator_order,
+)
 from derivations.core.result import DerivationResult
 from derivations.core.typeset import latex
 from derivations.sections.meromorphic_ring import (
