@@ -150,3 +150,39 @@ def test_pmax_101_certifies_every_odd_p():
     assert [r["p"] for r in rows] == list(range(1, 102, 2))
     integral_certs = [c for c in build.log.certificates if c.label == "eq:liniowiec"]
     assert len(integral_certs) == 51 and all(c.outcome.value == "pass" for c in integral_certs)
+
+
+def test_scaled_field_is_sympys_cancelled_field():
+    """scaled_field (symengine products, read into flint) against SymPy's cancel and Poly of the same
+    K times right-hand side, for the derived field and the Poisson field, odd p <= 21."""
+    import sympy as sp
+
+    from derivations.core.options import BuildOptions
+    from derivations.core.recipe_rings import INTEGRAL_CTX
+    from derivations.core.symbols import d, g1, g2, g3, p, w1, w2
+    from derivations.output.pipeline import derive
+    from derivations.sections import first_integrals
+
+    field = derive(BuildOptions(), ["special_case"]).results["special_case"].exports["field"]
+    poisson = {g1: -w2 * g3, g2: w1 * g3, g3: w2 * g1 - w1 * g2}
+    for p_value in range(1, 22, 2):
+        scaled = first_integrals.scaled_field(field, p_value)
+        for var, rhs in list(field.items()) + list(poisson.items()):
+            cancelled = sp.Poly(sp.cancel(p_value * (d**2 + 1) * rhs.subs(p, p_value)), d, w1, w2, g1, g2, g3)
+            assert all(c.is_Integer for c in cancelled.coeffs())
+            expected = INTEGRAL_CTX.from_dict({m: int(c) for m, c in cancelled.terms()})
+            assert scaled[str(var)] == expected, (p_value, var)
+
+
+def test_integer_polynomial_refuses_a_fraction():
+    import pytest
+    import sympy as sp
+
+    from derivations.core.symbols import d, w1
+    from derivations.sections.first_integrals import _integer_polynomial
+
+    assert str(_integer_polynomial((d**2 + 1) * w1 / (d**2 + 1))) == "w1"
+    with pytest.raises(ArithmeticError):
+        _integer_polynomial(w1 / 2)
+    with pytest.raises(ArithmeticError):
+        _integer_polynomial(sp.Integer(1) / (d + 1))

@@ -45,8 +45,11 @@ polynomial.
 """
 from __future__ import annotations
 
+import functools
 from math import comb
 
+import flint
+import symengine as se
 import sympy as sp
 
 from derivations.core import paper
@@ -56,6 +59,7 @@ from derivations.core.certificates import (
     Outcome,
     stopwatch,
 )
+from derivations.core.common_denominator import NotAPolynomial, polynomial
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, certify_polys_zero, certify_zero
 from derivations.core.flint_factor import factor_univariate
@@ -106,20 +110,33 @@ def construct(p_value: int) -> tuple[FractionFree, bool]:
     return FractionFree(**vars(numerators)), numerators.exact
 
 
-def flint_from_sympy(expr) -> object:
-    poly = sp.Poly(sp.expand(expr), sp.Symbol("d"), w1, w2, g1, g2, g3)
-    return CTX.from_dict({m: int(c) for m, c in poly.terms()})
+_RATIONAL_CTX = flint.fmpq_mpoly_ctx.get(CTX.names(), "lex")
+_INDEX = {str(x): k for k, x in enumerate((d, w1, w2, g1, g2, g3))}
+
+
+def _integer_polynomial(expr) -> object:
+    """``expr``, a polynomial over Z once its denominators cancel, as an element of ``CTX``.
+
+    symengine's products keep one exponent per base, so K times a right-hand side over K's own factors
+    cancels as it is multiplied; SymPy's ``cancel`` runs only where a denominator is left."""
+    try:
+        poly = polynomial(se.expand(se.sympify(expr)), _RATIONAL_CTX, _INDEX)
+    except NotAPolynomial:
+        try:
+            poly = polynomial(se.expand(se.sympify(sp.cancel(expr))), _RATIONAL_CTX, _INDEX)
+        except NotAPolynomial as error:
+            raise ArithmeticError(f"not a polynomial over Z: {expr} ({error})") from error
+    if any(c.q != 1 for c in poly.coeffs()):
+        raise ArithmeticError(f"not a polynomial over Z: {expr}")
+    return CTX.from_dict({tuple(int(e) for e in m): int(c.p) for m, c in zip(poly.monoms(), poly.coeffs())})
 
 
 def scaled_field(field_pd: dict, p_value: int) -> dict:
     """K times the derived eq:sysfin field and the Poisson field, in Z[d, w, g]."""
     K = p_value * (d**2 + 1)
     poisson = {g1: -w2 * g3, g2: w1 * g3, g3: w2 * g1 - w1 * g2}
-    out = {}
-    for var, rhs in list(field_pd.items()) + list(poisson.items()):
-        scaled = sp.cancel(K * rhs.subs(p, p_value))
-        out[str(var)] = flint_from_sympy(scaled.subs(d, sp.Symbol("d")))
-    return out
+    return {str(var): _integer_polynomial(K * rhs.subs(p, p_value))
+            for var, rhs in list(field_pd.items()) + list(poisson.items())}
 
 
 _FLINT_NAME = {"omega1": "w1", "omega2": "w2", "gamma1": "g1", "gamma2": "g2", "gamma3": "g3"}
@@ -220,6 +237,7 @@ def rational_polys(ff: FractionFree) -> list[sp.Poly]:
 QD_FIELD = "Q(d)[w1,w2,g1,g2,g3] (SymPy Poly over the field QQ(d))"
 
 
+@functools.lru_cache(maxsize=256)   # the same constants (w1, w2, 1/(d^2+1), gamma, signs) are asked for again and again
 def _poly(expr) -> sp.Poly:
     return sp.Poly(expr, w1, w2, g1, g2, g3, domain=sp.QQ.frac_field(d))
 
