@@ -229,3 +229,34 @@ class _Log:
 
     def record(self, certificate):
         return certificate
+
+
+# ---- the drop-in: flint_factor.factor(expr) on rational expressions as the derivations write them
+
+_SYMBOLS = sp.symbols("I11 I13 d T")
+_atom = st.sampled_from(_SYMBOLS) | st.integers(-3, 3).map(sp.Integer) | st.fractions(
+    min_value=-2, max_value=2, max_denominator=3).map(lambda q: sp.Rational(q.numerator, q.denominator))
+
+
+def _combine(children):
+    pair = st.tuples(children, children)
+    return (pair.map(lambda ab: ab[0] + ab[1]) | pair.map(lambda ab: ab[0] * ab[1])
+            | pair.filter(lambda ab: ab[1] != 0).map(lambda ab: ab[0] / ab[1])
+            | st.tuples(children, st.integers(2, 3)).map(lambda ab: ab[0] ** ab[1]))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.recursive(_atom, _combine, max_leaves=7))
+def test_factor_is_sympys_on_nested_rational_expressions(expr):
+    from derivations.core.flint_factor import factor
+
+    assert sp.srepr(factor(expr)) == sp.srepr(sp.factor(expr))
+
+
+def test_factor_leaves_what_flint_cannot_read_to_sympy():
+    from derivations.core.flint_factor import factor
+
+    x = sp.Symbol("x")
+    x_positive = sp.Symbol("x", positive=True)
+    for expr in (x**2 + sp.I, sp.sqrt(2) * x + 2, sp.sin(x) ** 2 - 1, x + x_positive, sp.Integer(6), x**sp.Rational(1, 2) - 1):
+        assert sp.srepr(factor(expr)) == sp.srepr(sp.factor(expr)), expr

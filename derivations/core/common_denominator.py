@@ -44,7 +44,7 @@ from dataclasses import dataclass
 import symengine as se
 from flint import fmpq
 
-__all__ = ["NotAPolynomial", "common_denominator", "polynomial"]
+__all__ = ["NotAPolynomial", "common_denominator", "polynomial", "rational_function"]
 
 
 class _NotCovered(Exception):
@@ -207,15 +207,39 @@ def common_denominator(expr, names: tuple, ring):
     >>> common_denominator(x / (x + 1) + 1 / (x + 1), ("x", "y"), ring) is None   # together gives 1
     True
     """
+    pair = _fraction(expr, names, ring)
+    if pair is None:
+        return None
+    (numerator, denominator), bases = pair
+    if not numerator.is_zero() and any(not numerator.gcd(part).is_constant() for part in bases):
+        return None
+    return numerator, denominator
+
+
+def rational_function(expr, names: tuple, ring):
+    """``(N, D)`` in ``ring`` with ``expr = N / D``, not reduced (any common factor left in), or ``None``
+    when ``expr`` is not a rational function over Q of the generators ``names`` (functions, non-integer
+    exponents, floats, complex numbers, other symbols).
+
+    >>> import sympy as sp
+    >>> from flint import fmpq_mpoly_ctx
+    >>> x = sp.Symbol("x")
+    >>> rational_function(x / (x + 1) + 1 / (x + 1), ("x",), fmpq_mpoly_ctx.get(("x",), "lex"))
+    (x + 1, x + 1)
+    """
+    pair = _fraction(expr, names, ring)
+    return None if pair is None else pair[0]
+
+
+def _fraction(expr, names: tuple, ring):
+    """(``(N, D)``, the bases of D) from :class:`_Recursion`, or ``None`` outside it."""
     try:
         recursion = _Recursion(ring, {name: k for k, name in enumerate(names)})
         whole = recursion.parts(se.sympify(expr))
     except (_NotCovered, KeyError, TypeError, ValueError, RuntimeError, ZeroDivisionError):
         return None
     numerator = ring.from_dict({tuple(max(e, 0) for e in whole.exponents): whole.coefficient}) * whole.numerator
-    if not numerator.is_zero() and any(not numerator.gcd(part).is_constant() for part, _ in whole.bases.values()):
-        return None
     denominator = ring.from_dict({tuple(max(-e, 0) for e in whole.exponents): 1})
     for part, power in whole.bases.values():
         denominator *= part**power
-    return numerator, denominator
+    return (numerator, denominator), [part for part, _ in whole.bases.values()]

@@ -20,6 +20,8 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
+from derivations.core import flint_factor
+
 __all__ = ["Emitted", "emit_source"]
 
 
@@ -103,7 +105,7 @@ class Emitted:
             for expr in self.outputs:
                 terms = []
                 for monomial, coefficient in sp.Poly(sp.expand(expr), *self.linear_in).terms():
-                    lines.append(f"    k{count} = {_source(sp.factor(coefficient))}")
+                    lines.append(f"    k{count} = {_source(flint_factor.factor(coefficient))}")
                     factor = sp.Mul(*(s**e for s, e in zip(self.linear_in, monomial)))
                     terms.append(f"k{count}" + ("" if factor == 1 else f"*{_source(factor)}"))
                     count += 1

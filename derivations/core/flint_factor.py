@@ -27,6 +27,8 @@ import sympy as sp
 from sympy.core.exprtools import _keep_coeff
 from sympy.polys.polyutils import _sort_gens
 
+from derivations.core.common_denominator import rational_function
+
 
 def integer_poly(coefficients: list) -> tuple[flint.fmpz_poly, Fraction]:
     """(integer polynomial, rational scale) with the given polynomial = scale * integer polynomial."""
@@ -142,6 +144,29 @@ def factor_multivariate(numerator, denominator, symbols: tuple) -> sp.Expr:
     product = sp.Mul(*([_mpoly_expr(f, symbols) ** e for f, e in num_factors]
                        + [_mpoly_expr(f, symbols) ** -e for f, e in den_factors]))
     return _keep_coeff(sp.Rational(coefficient.numerator, coefficient.denominator), product)
+
+
+def factor(expr) -> sp.Expr:
+    """``sympy.factor(expr)``: by FLINT (:func:`factor_multivariate`) when ``expr`` is a rational function over
+    Q of its symbols, else by SymPy itself (complex or irrational numbers, functions, two symbols of one
+    name with different assumptions, which SymPy keeps apart and FLINT's named generators would not).
+
+    >>> import sympy as sp
+    >>> a, b = sp.symbols("a b", positive=True)
+    >>> factor(a / (a + b) - b / (a + b) + 1 / (2 * a))
+    (2*a**2 - 2*a*b + a + b)/(2*a*(a + b))
+    >>> _ == sp.factor(a / (a + b) - b / (a + b) + 1 / (2 * a))
+    True
+    """
+    expr = sp.sympify(expr)
+    symbols = expr.free_symbols
+    names = tuple(str(x) for x in generator_order(symbols))
+    if not symbols or len(set(names)) != len(names) or expr.has(sp.I):
+        return sp.factor(expr)
+    pair = rational_function(expr, names, flint.fmpq_mpoly_ctx.get(names, "lex"))
+    if pair is None:
+        return sp.factor(expr)
+    return factor_multivariate(*pair, generator_order(symbols))
 
 # --- over the Gaussian rationals Q(i): products of linear factors --------------------------------------
 # python-flint 0.9 factors over Z only.  A polynomial f in Q(i)[x] whose roots all lie in Q(i) (the F and

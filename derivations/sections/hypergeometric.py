@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from derivations.core import paper
+from derivations.core import flint_factor, paper
 from derivations.core.certificates import CertificateLog, Outcome
 from derivations.core.differential import S, lie_derivative
 from derivations.core.errata import erratum
@@ -107,8 +107,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                           a0 * jets[3] + a1 * jets[2] + a2 * jets[1] + a3 * jets[0], PQ)
     result.formula("genhipprep", "eq:genhipprep, a'ss", "Third-order equation for $\\gamma_1$",
                    [r"a_0\dddot\gamma_1+a_1\ddot\gamma_1+a_2\dot\gamma_1+a_3\gamma_1=0,\quad "
-                    + r",\quad ".join(f"a_{i}={latex(sp.factor(v))}" for i, v in enumerate((a0, a1))) + ",",
-                    *[f"a_{i}={latex(sp.factor(v))}" + ("," if i == 2 else "") for i, v in enumerate((a2, a3), 2)]],
+                    + r",\quad ".join(f"a_{i}={latex(flint_factor.factor(v))}" for i, v in enumerate((a0, a1))) + ",",
+                    *[f"a_{i}={latex(flint_factor.factor(v))}" + ("," if i == 2 else "") for i, v in enumerate((a2, a3), 2)]],
                    c_prep)
     result.errata.append(erratum(paper.GENHIPPREP, "confirmed", paper.GENHIPPREP.latex,
                                  "certified as an identity along the flow", c_prep))
@@ -142,7 +142,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                        PD_RING.domain)
     result.formula("gamma_1", "eq:gamma_1, t->z", "Equation in $z=4/(e^t+e^{-t})^2=\\operatorname{sech}^2t$",
                    [r"\gamma_1'''+b_1\gamma_1''+b_2\gamma_1'+b_3\gamma_1=0,\quad b_1=" + latex(b_printed[1]) + ",",
-                    r"b_2=" + latex(sp.factor(b_printed[2])) + ",", r"b_3=" + latex(b_printed[3])], c_z, c_zdots, c_b)
+                    r"b_2=" + latex(flint_factor.factor(b_printed[2])) + ",", r"b_3=" + latex(b_printed[3])], c_z, c_zdots, c_b)
 
     # 3. gamma1 = w u, w^2 = z - 1
     r_k = [sp.Integer(1)]  # w^(k) = w r_k

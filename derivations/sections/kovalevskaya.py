@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from derivations.core import paper
+from derivations.core import flint_factor, paper
 from derivations.core.certificates import (
     Certificate,
     CertificateLog,
@@ -113,8 +113,8 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                                  [point[x] + I11 * I22 * printed_point[x] for x in (w1, w2)], DOMAIN)
     result.formula("darboux", "eq:d", "Darboux point ($m_3=I_{13}\\bar\\omega_1+I_{23}\\bar\\omega_2=ir$, "
                    "$r=\\sqrt{I_{11}I_{22}}$)",
-                   r"\bar\omega_1=" + latex(sp.factor(point[w1])) + r",\quad\bar\omega_2="
-                   + latex(sp.factor(point[w2])) + r",\quad\bar\gamma=0", c_point, c_point_scale)
+                   r"\bar\omega_1=" + latex(flint_factor.factor(point[w1])) + r",\quad\bar\omega_2="
+                   + latex(flint_factor.factor(point[w2])) + r",\quad\bar\gamma=0", c_point, c_point_scale)
     result.errata.append(erratum(paper.EQ_D, "corrected",
                                  r"\bar\omega=-I_{11}I_{22}\times\text{printed}",
                                  "the printed point belongs to the printed gen12 (time scale -I11 I22)",
@@ -206,7 +206,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                                  "exact identity of vector fields; p^2 changes sign as eq:necc1 / eq:necc11 say",
                                  c_lina, c_lina_p))
     # the two cases of Theorem 3.1 as emitted by meromorphy(): Lambda^2 restricted (real there)
-    restricted = {name: sp.factor(sp.cancel(real.subs(zero, 0))) for name, zero in (("i13", I13), ("i23", I23))}
+    restricted = {name: flint_factor.factor(sp.cancel(real.subs(zero, 0))) for name, zero in (("i13", I13), ("i23", I23))}
     c_real_cases = certify_zero(log, "Lambda^2 is real on I13 = 0 and on I23 = 0 (its imaginary part vanishes "
                                 "identically there), so p^2 = Re Lambda^2 restricted", "eq:neccg1",
                                 [imag.subs(I13, 0), imag.subs(I23, 0)], DOMAIN)

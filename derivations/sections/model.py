@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from derivations.core import paper
+from derivations.core import flint_factor, paper
 from derivations.core.certificates import CertificateLog, Outcome
 from derivations.core.differential import (
     S,
@@ -92,8 +92,8 @@ def derive_euler_field() -> tuple[dict, sp.Expr]:
     inertia = inertia_tensor()
     equations = inertia * sp.Matrix([dw1, dw2, 0]) - (inertia * omega).cross(omega) - lam * E3
     (solution,) = sp.linsolve(list(equations), [dw1, dw2, lam])
-    field = {w1: sp.factor(solution[0]), w2: sp.factor(solution[1])}
-    return field, sp.factor(solution[2])
+    field = {w1: flint_factor.factor(solution[0]), w2: flint_factor.factor(solution[1])}
+    return field, flint_factor.factor(solution[2])
 
 
 def derive_poisson_field() -> dict:
@@ -108,7 +108,7 @@ def derive_general_solution() -> dict:
     (sol,) = sp.linsolve(
         [I13 * w1 + I23 * w2 - u_val, I23 * w1 / I22 - I13 * w2 / I11 - v_val], [w1, w2]
     )
-    return {w1: sp.factor(sol[0]), w2: sp.factor(sol[1])}
+    return {w1: flint_factor.factor(sol[0]), w2: flint_factor.factor(sol[1])}
 
 
 def _realise(expr, sign: int):
@@ -205,7 +205,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
             {"t": (-3, 3), "I11": (0.5, 3), "I22": (0.5, 3), "I13": (0.2, 1.5), "I23": (0.2, 1.5)},
             seed=20 + sign))
     D = I13**2 * I22 + I23**2 * I11
-    coeff = {name: sp.factor(sp.Poly(solution[x], T, S).coeff_monomial(m))
+    coeff = {name: flint_factor.factor(sp.Poly(solution[x], T, S).coeff_monomial(m))
              for name, x, m in (("a", w1, T), ("c1/2", w1, S), ("b", w2, T), ("c2/2", w2, S))}
     c_line = certify_zero(log, "omega(t) tends to the equilibrium line I13 w1 + I23 w2 = 0 as t -> +-oo",
                           "eq:o12", [(I13 * solution[w1] + I23 * solution[w2]).subs({S: 0, T: s}) for s in (1, -1)],

@@ -30,7 +30,7 @@ import mpmath
 import symengine as se
 import sympy as sp
 
-from derivations.core import paper
+from derivations.core import flint_factor, paper
 from derivations.core.certificates import CertificateLog, Outcome
 from derivations.core.differential import (
     S,
@@ -99,7 +99,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     coeff = model_result.exports["coefficients"]
 
     # 1. the coefficients with I13 = 0, and the parametrisation by p, d
-    zero13 = {name: sp.factor(value.subs(I13, 0)) for name, value in coeff.items()}
+    zero13 = {name: flint_factor.factor(value.subs(I13, 0)) for name, value in coeff.items()}
     c_coef = certify_zero(log, "with I13 = 0: b = c1 = 0, a = -I22/I23, c2/2 = r/I23", "eq:necc2",
                           [zero13["b"], zero13["c1/2"], zero13["a"] + I22 / I23, zero13["c2/2"] - r / I23],
                           model.WITH_R)
@@ -133,7 +133,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                              a_val + I11 * I22 * a_printed, I_DOMAIN)
 
     # 2. the equations in p, d
-    sysfin = {v: sp.factor(field[v].subs(SUBSTITUTION)) for v in (w1, w2)}
+    sysfin = {v: flint_factor.factor(field[v].subs(SUBSTITUTION)) for v in (w1, w2)}
     c_sys = certify_zero(log, "derived Euler equations with I13 = 0 become eq:sysfin with the + sign",
                          paper.SYSFIN.label, [sysfin[v] - paper.printed_sysfin(1)[v] for v in (w1, w2)], PD_FIELD)
     c_sys_minus = certify_zero(log, "eq:sysfin with the - sign is the derived system", paper.SYSFIN.label,
@@ -228,7 +228,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                           lam_poly + lam**3 - p**2 * lam, PD_DOMAIN)
     result.formula("A0", "eq:am2, eq:ro", "Residue of $A(t)$ at $t_0=i\\pi/2$ and its eigenvalues",
                    r"A_0=" + latex(A0.subs(c, sp.Symbol(r"\sqrt{d^2+1}"))) + r",\quad \det(A_0-\lambda)="
-                   + latex(sp.factor(-lam**3 + p**2 * lam)), c_am2, c_res_num, c_char)
+                   + latex(flint_factor.factor(-lam**3 + p**2 * lam)), c_am2, c_res_num, c_char)
     result.errata.append(erratum(paper.AM2, "confirmed", paper.AM2.latex, "derived as an exact residue",
                                  c_am2, c_res_num))
 
