@@ -154,8 +154,8 @@ def reduced_form():
     """``(num_e, den_e)``: r = num_e/den_e in the parametrisation c = (m^2+1)/(2m) (expressions in z, m, p)."""
     _, _, N, Qd = derived_pqr()
     c_m = (m**2 + 1) / (2 * m)
-    return (sp.expand(N.as_expr().subs(cc, c_m) * (2 * m) ** 10),
-            sp.expand(Qd.as_expr().subs(cc, c_m) * (2 * m) ** 10))
+    return (sp.expand(N.as_expr().xreplace({cc: c_m}) * (2 * m) ** 10),
+            sp.expand(Qd.as_expr().xreplace({cc: c_m}) * (2 * m) ** 10))
 
 
 w = sp.Symbol("w")
@@ -171,7 +171,7 @@ def rotated_form():
     solutions correspond one to one), and the reduced form becomes real: no Gaussian arithmetic.
     """
     num_e, den_e = reduced_form()
-    return sp.expand(-num_e.subs(z, sp.I * w)), sp.expand(den_e.subs(z, sp.I * w))
+    return sp.expand(-num_e.xreplace({z: sp.I * w})), sp.expand(den_e.xreplace({z: sp.I * w}))
 
 
 def _m_poly(expr) -> flint.fmpq_poly:
@@ -286,7 +286,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     points = POINTS
     d_m = (m**2 - 1) / (2 * m)
     c_sing = certify_zero(log, "Q vanishes at s0 = 0, s1,2 = +-i, s3,4 = -i(c -+ d)", "eq:Q",
-                          [Q.subs(to_m).subs(z, pt) for pt in points.values()], Domain("Q(m)[i]"))
+                          [Q.xreplace(to_m).xreplace({z: pt}) for pt in points.values()], Domain("Q(m)[i]"))
     deltas = {}
     for name, pt in points.items():
         rho0 = leading_coefficient_at_double_pole(num, den, pt)
@@ -305,7 +305,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     galois_pmax = max(GALOIS_PMAX, options.pmax)
     rows = []
     # r is invariant under m -> 1/m (it depends on c and d^2 only), which exchanges s3 and s4
-    swapped = cancelled((num_e / den_e).subs(m, 1 / m) - num_e / den_e, Domain("Q(m,p)(z)[i]"))
+    swapped = cancelled((num_e / den_e).xreplace({m: 1 / m}) - num_e / den_e, Domain("Q(m,p)(z)[i]"))
     c_swap = certify_zero(log, "r(z; 1/m) = r(z; m): the parametrisation's m -> 1/m (d -> -d) exchanges s3 and s4",
                           "eq:rlin", swapped, Domain("Q(m,p)(z)[i]"))
     # the decisions run in w = -i z, where the reduced form is real
@@ -317,7 +317,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                          [num_w - num_w.xreplace({sp.I: -sp.I}), den_w - den_w.xreplace({sp.I: -sp.I}),
                           den_w - sp.expand(expected_den)],
                          Domain("Q(m,p)[w]"))
-    mirrored = cancelled((num_w / den_w).subs({w: -w, m: -m}, simultaneous=True) - num_w / den_w, Domain("Q(m,p)(w)"))
+    mirrored = cancelled((num_w / den_w).xreplace({w: -w, m: -m}) - num_w / den_w, Domain("Q(m,p)(w)"))
     c_mirror = certify_zero(log, "rt(-w; -m) = rt(w; m): w -> -w maps s1 (w = 1) to s2 (w = -1) with m -> -m, so "
                             "the obstruction at s2 is the one at s1 with m -> -m (zero iff it is)", "eq:rlin",
                             mirrored, Domain("Q(m,p)(w)"))

@@ -76,7 +76,7 @@ def darboux_point(euler: dict) -> dict:
 
 def kovalevskaya_matrix(field: dict, point: dict) -> sp.Matrix:
     J = sp.Matrix([[sp.diff(field[x], y) for y in STATE] for x in STATE])
-    return J.subs(point, simultaneous=True) + sp.eye(5)
+    return J.xreplace(point) + sp.eye(5)
 
 
 def lambda_squared_closed_form():
@@ -98,16 +98,16 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
 
     point = darboux_point(euler)
     c_point = certify_zero(log, "Darboux point: v(d) = -d with m3 = i r, r^2 = I11 I22, gamma = 0 (r -> -r: the "
-                           "conjugate point)", "eq:d", [field[x].subs(point, simultaneous=True) + point[x]
+                           "conjugate point)", "eq:d", [field[x].xreplace(point) + point[x]
                                                         for x in STATE], DOMAIN)
     printed_point = {w1: 1 / (I11 * I23 + sp.I * I13 * r), w2: -1 / (I13 * I22 - sp.I * I23 * r),
                      g1: 0, g2: 0, g3: 0}
     printed_field = full_field(paper.GEN12_FIELD, model_result.exports["poisson"])
     c_point_pr = certify_zero(log, "printed eq:d is a Darboux point of the printed gen12 + Poisson", "eq:d",
-                              [printed_field[x].subs(printed_point, simultaneous=True) + printed_point[x]
+                              [printed_field[x].xreplace(printed_point) + printed_point[x]
                                for x in STATE], DOMAIN)
     c_point_true = certify_zero(log, "printed eq:d is a Darboux point of the derived equations", "eq:d",
-                                [field[x].subs(printed_point, simultaneous=True) + printed_point[x]
+                                [field[x].xreplace(printed_point) + printed_point[x]
                                  for x in STATE], DOMAIN, expect=Outcome.FAIL)
     c_point_scale = certify_zero(log, "derived Darboux point = -(I11 I22) x printed eq:d", "eq:d",
                                  [point[x] + I11 * I22 * printed_point[x] for x in (w1, w2)], DOMAIN)
@@ -172,7 +172,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
 
     # I11 = I22: non-semisimple
     same = {I22: I11, r: I11}
-    K_same = K.subs(same, simultaneous=True)
+    K_same = K.xreplace(same)
     N = K_same - sp.eye(5)
     with stopwatch() as elapsed:
         minors = [(rows, cols) for rows in ([0, 2, 4], [1, 2, 4], [0, 3, 4], [1, 3, 4], [2, 3, 4], [0, 1, 4])
@@ -183,7 +183,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
             if not normal_form(value, Domain("Q(I11,I13,I23)[i]")).is_zero:
                 witness = (rows, cols)
                 break
-        lam_same = sp.expand(Lam2.subs(same, simultaneous=True))
+        lam_same = sp.expand(Lam2.xreplace(same))
     outcome = Outcome.PASS if witness is not None and lam_same == 0 else Outcome.FAIL
     c_ss = log.record(Certificate(
         "I11 = I22: Lambda = 0, eigenvalue 1 has multiplicity 3 and rank(K - Id) >= 3: K is not semi-simple",
@@ -197,7 +197,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     jac = sp.Matrix([[sp.diff(image[x], y) for y in STATE] for x in STATE])
     swapped = {x: swap(field[x]) for x in STATE}
     pushed = jac * sp.Matrix([field[x] for x in STATE])
-    target_field = sp.Matrix([swapped[x].subs(image, simultaneous=True) for x in STATE])
+    target_field = sp.Matrix([swapped[x].xreplace(image) for x in STATE])
     c_lina = certify_zero(log, "eq:lina maps the derived system with (I11,I22,I13,I23) to the one with "
                           "(I22,I11,I23,I13)", "eq:lina", list(pushed - target_field), PLAIN)
     c_lina_p = certify_zero(log, "eq:lina maps Lambda^2 of the case I23 = 0 to Lambda^2 of the case I13 = 0",
