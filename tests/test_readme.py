@@ -56,3 +56,14 @@ def test_build_table_is_the_committed_measurement():
 
     assert (f"| SymPy's share of the self time (py-spy samples, one process) | {sampled_share('base')} | "
             f"{sampled_share('this')} |") in readme
+
+
+def test_pmax_201_sentence_is_the_committed_measurement():
+    """The README's --pmax 201 sentence quotes bench/results/build_profile_201.json."""
+    import json
+
+    data = json.loads((ROOT / "bench/results/build_profile_201.json").read_text(encoding="utf-8"))
+    readme = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
+    assert (f"At `--pmax 201` (both cores) the build took {data['this']['pmax 201']:.1f} s, beside "
+            f"{data['base']['pmax 201']:.1f} s for the revision before ({data['base_revision']})") in readme
+    assert data["identical"]["pmax 201"] == []
