@@ -52,6 +52,13 @@ MUTANTS = [
     ("polynomial-reader-fractional-exponent", "derivations/core/common_denominator.py",
      "isinstance(factor.args[0], se.Symbol) and isinstance(\n                    factor.args[1], se.Integer):",
      "isinstance(factor.args[0], se.Symbol):", "test:tests/test_exact.py"),
+    ("obstruction-convolution-recursion", "derivations/sections/local_obstruction.py",
+     "rhs += aE[j] * Y[k - j] - bE[j] * S[k - j]", "rhs += aE[j] * Y[k - j] - bE[j] * Y[k - j]", "build"),
+    ("fingerprint-without-coefficients", "derivations/sections/meromorphic.py",
+     'digest.update(",".join([c.p.str(16) for c in coefficients]).encode())', "pass",
+     "test:tests/test_basis_fingerprint.py"),
+    ("factor-generators-alphabetical", "derivations/core/flint_factor.py", "return tuple(_sort_gens(list(symbols)))",
+     "return tuple(sorted(symbols, key=str))", "test:tests/test_flint_factor.py"),
     ("laurent-csch-sign", "derivations/sections/residue.py", "csch = [-2 * (sp.Integer(2) ** (2 * k - 1) - 1)",
      "csch = [2 * (sp.Integer(2) ** (2 * k - 1) - 1)", "build"),
     # suslov/recipes: written once, run exactly by the build (the build must fail)
