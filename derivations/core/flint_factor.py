@@ -162,14 +162,12 @@ def factor(expr) -> sp.Expr:
     True
     """
     expr = sp.sympify(expr)
-    symbols = expr.free_symbols
-    names = tuple(str(x) for x in generator_order(symbols))
-    if not symbols or len(set(names)) != len(names) or expr.has(sp.I):
+    gens = generator_order(expr.free_symbols)
+    names = tuple(str(x) for x in gens)
+    if not gens or len(set(names)) != len(names) or expr.has(sp.I):
         return sp.factor(expr)
     pair = rational_function(expr, names, flint.fmpq_mpoly_ctx.get(names, "lex"))
-    if pair is None:
-        return sp.factor(expr)
-    return factor_multivariate(*pair, generator_order(symbols))
+    return sp.factor(expr) if pair is None else factor_multivariate(*pair, gens)
 
 # --- over the Gaussian rationals Q(i): products of linear factors --------------------------------------
 # python-flint 0.9 factors over Z only.  A polynomial f in Q(i)[x] whose roots all lie in Q(i) (the F and

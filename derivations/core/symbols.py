@@ -24,6 +24,7 @@ x = sp.Symbol("x")          # x = exp(t), used for residues at t = i*pi/2
 omega = sp.Matrix([w1, w2, 0])
 gamma = sp.Matrix([g1, g2, g3])
 
+
 def from_symengine(expr, *symbols: sp.Symbol) -> sp.Expr:
     """A symengine result as SymPy with ``symbols`` (SymPy symbols with their assumptions) put back by name:
     symengine keeps a symbol's name, not its assumptions, so a plain ``Symbol("d")`` would otherwise stand

@@ -46,6 +46,21 @@ def _raw(value):
     return mpmath.mpf(value)._mpf_
 
 
+def _cross_sum(pairs, scale, prec: int, rnd: str) -> list:
+    """``sum scale * (g x (w1, w2, 0))`` over the (g, w) pairs of raw mpf values, as mpf: operation for operation
+    what ``r0 += scale * (-g2 * w1)`` etc. do on mpf (``r0 += -g2 * w1`` for ``scale=None``), so the same
+    roundings and the same bits, without an mpf object per operation."""
+    r0 = r1 = r2 = fzero
+    for g_, w_ in pairs:
+        t0 = mul(neg(g_[2], prec, rnd), w_[1], prec, rnd)
+        t1 = mul(g_[2], w_[0], prec, rnd)
+        t2 = sub(mul(g_[0], w_[1], prec, rnd), mul(g_[1], w_[0], prec, rnd), prec, rnd)
+        if scale is not None:
+            t0, t1, t2 = mul_int(t0, scale, prec, rnd), mul_int(t1, scale, prec, rnd), mul_int(t2, scale, prec, rnd)
+        r0, r1, r2 = add(r0, t0, prec, rnd), add(r1, t1, prec, rnd), add(r2, t2, prec, rnd)
+    return [mpmath.mp.make_mpf(r) for r in (r0, r1, r2)]
+
+
 def cross(g, w):
     """g x (w1, w2, 0)."""
     return [-g[2] * w[1], g[2] * w[0], g[0] * w[1] - g[1] * w[0]]
@@ -67,16 +82,7 @@ def limit_series(u, v, g0, at_plus: bool, terms: int):
     raw_w = [[_raw(c) for c in wj] for wj in w]
     raw = [[c._mpf_ for c in coeffs[0]]]
     for k in range(1, terms + 1):
-        # sum_j s (gamma_(k-j) x w_j), component by component: the operations of
-        # ``r0 += s * (-g2 * w1)`` etc. on mpf, on their raw values (same roundings, same bits)
-        r0 = r1 = r2 = fzero
-        for j in range(1, k + 1):
-            g_, w_ = raw[k - j], raw_w[j]
-            r0 = add(r0, mul_int(mul(neg(g_[2], prec, rnd), w_[1], prec, rnd), s, prec, rnd), prec, rnd)
-            r1 = add(r1, mul_int(mul(g_[2], w_[0], prec, rnd), s, prec, rnd), prec, rnd)
-            r2 = add(r2, mul_int(sub(mul(g_[0], w_[1], prec, rnd), mul(g_[1], w_[0], prec, rnd), prec, rnd), s,
-                                 prec, rnd), prec, rnd)
-        rhs = [mpmath.mp.make_mpf(r) for r in (r0, r1, r2)]
+        rhs = _cross_sum(((raw[k - j], raw_w[j]) for j in range(1, k + 1)), s, prec, rnd)   # sum_j s gamma_(k-j) x w_j
         M = mpmath.matrix([[k, 0, s * w0[1]], [0, k, -s * w0[0]], [-s * w0[1], s * w0[0], k]])
         coeffs.append(list(mpmath.lu_solve(M, mpmath.matrix(rhs))))
         raw.append([c._mpf_ for c in coeffs[-1]])
@@ -102,14 +108,7 @@ def taylor_step(g, t0, h, u, v, tol):
     while small < 3:
         W.append([u[i] * T[n] + v[i] * S[n] for i in range(2)])
         raw_w.append([c._mpf_ for c in W[-1]])
-        # sum_j G_j x W_(n-j), component by component: ``a0 += -g2 * w1`` etc. on the raw values
-        a0 = a1 = a2 = fzero
-        for j in range(n + 1):
-            g_, w_ = raw_g[j], raw_w[n - j]
-            a0 = add(a0, mul(neg(g_[2], prec, rnd), w_[1], prec, rnd), prec, rnd)
-            a1 = add(a1, mul(g_[2], w_[0], prec, rnd), prec, rnd)
-            a2 = add(a2, sub(mul(g_[0], w_[1], prec, rnd), mul(g_[1], w_[0], prec, rnd), prec, rnd), prec, rnd)
-        acc = [mpmath.mp.make_mpf(a) for a in (a0, a1, a2)]
+        acc = _cross_sum(((raw_g[j], raw_w[n - j]) for j in range(n + 1)), None, prec, rnd)   # sum_j G_j x W_(n-j)
         T.append(mpmath.fsum(S[j] * S[n - j] for j in range(n + 1)) / (n + 1))
         S.append(-mpmath.fsum(T[j] * S[n - j] for j in range(n + 1)) / (n + 1))
         G.append([a / (n + 1) for a in acc])

@@ -26,9 +26,9 @@ The enclosure, in three rigorous pieces:
    :func:`_majorant_tail`).
 2. **Taylor steps** from s0 = -S to s1 = +S (step h, centre c).  The Taylor coefficients of tanh and
    sech at c come from ``arb_series`` (exp of a series), those of gamma from Picard iteration on
-   series (pass n fixes coefficient n and runs on series of n + 1 terms).  Truncation after order N: on the closed square
-   ``|Re tau|, |Im tau| <= rho`` (rho <= 1, corners at distance sqrt 2 < pi/2 from c, so tanh and sech
-   are analytic there) ``|omega_i| <= |u_i| max|tanh| + |v_i| max|sech|`` (acb enclosures on a grid
+   series (pass n fixes coefficient n and runs on series of n + 1 terms).  Truncation after order N: on
+   the closed square ``|Re tau|, |Im tau| <= rho`` (rho <= 1, corners at distance sqrt 2 < pi/2 from
+   c, so tanh and sech are analytic there) ``|omega_i| <= |u_i| max|tanh| + |v_i| max|sech|`` (acb enclosures on a grid
    of sub-boxes), hence ``||A|| <= M = sqrt(2 (W1^2 + W2^2))`` (Frobenius norm of the cross-product
    matrix), Grönwall along rays gives ``||gamma(c + tau)|| <= Y e^{M rho}`` and Cauchy's estimate
    ``||gamma_k|| <= sqrt(3) Y e^{M rho} rho^-k``, so the remainder at ``|tau| <= h`` is at most
