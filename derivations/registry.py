@@ -15,6 +15,8 @@ from derivations.sections import (
     first_integrals,
     fuchsian,
     galois,
+    gauss,
+    general_angle,
     hypergeometric,
     kovalevskaya,
     meromorphic,
@@ -26,7 +28,7 @@ from derivations.sections import (
 
 DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, kovalevskaya, residue, hypergeometric,
                                                    meromorphic, first_integrals, scattering, galois,
-                                                   fuchsian)}
+                                                   fuchsian, gauss, general_angle)}
 
 
 def requirements(name: str) -> tuple[str, ...]:

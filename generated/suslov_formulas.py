@@ -8,7 +8,8 @@ Suslov problem: integrability, meromorphic and hypergeometric solutions".
 
 What is in this file, and where it comes from (one source of truth per formula):
 
-* ``_omega``, ``_omega_general``, ``_lambda_squared``, ``_p_squared_i13_zero``,
+* ``_omega``, ``_omega_general``, ``_lambda_squared``, ``_p_squared_i13_zero``, ``_gauss_invariants``,
+  ``_general_angle``,
   ``_p_squared_i23_zero``, ``_special_parameters``, ``_scattering_angle``: code printed
   by the build from the certified SymPy expressions of the derivations, each a function
   of a number context ``ctx`` (float64 or mpmath, ``suslov.kernel.contexts``);
@@ -45,12 +46,14 @@ from suslov.runtime import angle as _angle
 from suslov.runtime import angular as _angular
 from suslov.runtime import basis as _basis
 from suslov.runtime import bodies as _bodies
+from suslov.runtime import general_angle as _general
 from suslov.runtime import integrals as _integrals
 from suslov.runtime.bodies import Meromorphy, SpecialCase
 
 __all__ = ["PMAX", "INTEGRAL_PS", "BASIS_PS", "omega", "omega_mp", "omega_general", "omega_general_mp",
            "first_integral", "first_integral_mp", "first_integral_coefficients", "gamma_basis", "gamma_basis_mp",
-           "scattering_angle", "scattering_angle_mp", "scattering_angle_ball", "special_case_parameters", "SpecialCase", "canonical_frame",
+           "scattering_angle", "scattering_angle_mp", "scattering_angle_ball", "general_scattering_angle",
+           "general_scattering_angle_mp", "general_scattering_angle_ball", "special_case_parameters", "SpecialCase", "canonical_frame",
            "kovalevskaya_exponents", "meromorphy", "Meromorphy", "load_certificates"]
 
 PMAX = 15
@@ -131,6 +134,23 @@ def _scattering_angle(ctx, x, s, c):
     Emitted from the certified expression; certificates: scattering:249, scattering:239, scattering:245.
     """
     return 2*ctx.atan2(ctx.sqrt((s*s)*(ctx.sech(x)*ctx.sech(x)) + (ctx.tanh(x)*ctx.tanh(x))), c*ctx.sech(x))
+
+
+def _gauss_invariants(ctx, I11, I22, I13, I23):
+    """(U^2, a, b, c2) of a body: w_-^2 = a + i b = (u - i v).(u - i v), U^2 = u.u, c2 = (u x v)_3^2.
+
+    Emitted from the certified expression; certificates: gauss:348, gauss:349.
+    """
+    r = ctx.sqrt(I11)*ctx.sqrt(I22)
+    return ((I11*I11)*(I22*I22)*((I13*I13) + (I23*I23))/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), I11*I22*(I11 - I22)*(-I11*(I23*I23) + (I13*I13)*I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), -2*I11*I13*I22*I23*r*(I11 - I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), (I11*I11*I11)*(I22*I22*I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)))
+
+
+def _general_angle(ctx, h, g, s, c):
+    """Delta psi of any body from h = pi U/2, g = pi (U - X)/2, s = |sin(pi Y/2)|, c = |cos(pi Y/2)| (w_- = X + i Y; evaluation form).
+
+    Emitted from the certified expression; certificates: general_angle:353, general_angle:352, general_angle:358.
+    """
+    return 2*ctx.atan2(ctx.sqrt(ctx.expm1(-2*g)*ctx.expm1(2*g - 4*h)/(ctx.expm1(-2*h)*ctx.expm1(-2*h)))*ctx.sqrt((s*s)*(ctx.sech(h)*ctx.sech(h)) + (ctx.tanh(h)*ctx.tanh(h))), ctx.sqrt((c*c)*(ctx.sech(h)*ctx.sech(h)) + ((s*s)*(ctx.sech(h)*ctx.sech(h)) + (ctx.tanh(h)*ctx.tanh(h)))*ctx.exp(-2*g)*(ctx.expm1(2*g - 2*h)*ctx.expm1(2*g - 2*h))/(ctx.expm1(-2*h)*ctx.expm1(-2*h))))
 
 
 # ---------------------------------------------------------------- the shared recipes (certified per p)
@@ -370,6 +390,52 @@ def scattering_angle_ball(p, d, prec: int = 128):
     (True, 2.968844459491)
     """
     return _angle.scattering_angle_ball(_scattering_angle, p, d, prec)
+
+# ---------------------------------------------------------------- scattering angle of every body (closed form)
+
+
+def general_scattering_angle(I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, I23: ArrayLike) -> np.ndarray:
+    """Scattering angle Delta psi of any body (paper's frame: I12 = 0, a = e3), in closed form.
+
+    With s = sinh t the Poisson equations of every body are Gauss's hypergeometric equation
+    (certified: ``gauss``), and the angle between the limit rotation axes is ::
+
+        cos^2(Delta psi/2) = [cosh(pi U) |tau|^2 - Re(tau^2)] / (2 sinh^2(pi U)),
+        tau = 2 cos(pi kappa),  kappa = (i/2) w_-,  w_-^2 = (u - i v).(u - i v),  U = |u|
+
+    for omega = u tanh t + v sech t (eq:o12); for I13 = 0 it is Theorem 5.2 (corrected), certified
+    exactly.  Evaluated in a form with no cancellation and no overflow (``_general_angle``); the
+    entries broadcast like NumPy arrays, I11, I22 > 0, not I13 = I23 = 0 (the equilibrium).
+    Error bound (numeric evidence against :func:`general_scattering_angle_mp`): absolute
+    ``1e-13 (1 + |Y|)`` with ``|Y| = |Im w_-|`` (the phase pi Y/2 carries the rounding of Y).
+
+    >>> round(float(general_scattering_angle(1.25, 1, 0.3, -0.5)), 12)
+    2.9591441765
+    """
+    return _general.general_scattering_angle(_gauss_invariants, _general_angle, I11, I22, I13, I23)
+
+
+def general_scattering_angle_mp(I11, I22, I13, I23, dps: int | None = None):
+    """mpmath twin of :func:`general_scattering_angle` (scalars; strings for exact decimals) at ``dps``
+    digits (default: ``mpmath.mp.dps``).
+
+    >>> mpmath.nstr(general_scattering_angle_mp("5/4", 1, "3/10", "-1/2", dps=30), 25)
+    '2.959144176500328519'
+    """
+    return _general.general_scattering_angle_mp(_gauss_invariants, _general_angle, I11, I22, I13, I23, dps)
+
+
+def general_scattering_angle_ball(I11, I22, I13, I23, prec: int | None = None):
+    """Ball enclosure (python-flint ``arb``) of the closed form of :func:`general_scattering_angle`
+    at ``prec`` bits (default: ``flint.ctx.prec``): ints, Fractions or decimal strings are exact,
+    floats their binary value.  The validated-integration route that checks it is
+    :func:`suslov.validated.scattering_angle_enclosure` with ``method="integration"``.
+
+    >>> ball = general_scattering_angle_ball("5/4", 1, "3/10", "-1/2", prec=1000)
+    >>> ball.rad() < 1e-290, round(float(ball.mid()), 12)
+    (True, 2.9591441765)
+    """
+    return _general.general_scattering_angle_ball(_gauss_invariants, _general_angle, I11, I22, I13, I23, prec)
 
 # ---------------------------------------------------------------- numeric inertia tensors
 

@@ -1,7 +1,7 @@
 """Emit certified expressions as Python functions of a number context (``ctx``).
 
 A closed form is emitted once, as ``def _name(ctx, arg, ...)`` whose elementary functions
-come from ``ctx`` (``ctx.tanh``, ``ctx.sech``, ``ctx.sqrt``, ``ctx.atan2``): the module
+come from ``ctx`` (``ctx.tanh``, ``ctx.sech``, ``ctx.sqrt``, ``ctx.atan2``, ``ctx.exp``, ``ctx.expm1``): the module
 evaluates it with ``suslov.kernel.contexts.FLOAT`` (NumPy) or ``MP`` (mpmath), and the
 build's round trip (:mod:`derivations.output.roundtrip`) evaluates the *same emitted text* with a
 SymPy context and compares it with the certified expression exactly.
@@ -28,7 +28,7 @@ __all__ = ["Emitted", "emit_source"]
 class _ContextPrinter(PythonCodePrinter):
     """Arithmetic for floats, arrays and mpmath; tanh/sech/sqrt/atan2/Abs through ``ctx``."""
 
-    _CTX = {"tanh": "ctx.tanh", "sech": "ctx.sech", "atan2": "ctx.atan2"}
+    _CTX = {"tanh": "ctx.tanh", "sech": "ctx.sech", "atan2": "ctx.atan2", "exp": "ctx.exp", "expm1": "ctx.expm1"}
 
     def _print_Function(self, expr):
         name = type(expr).__name__
@@ -36,7 +36,7 @@ class _ContextPrinter(PythonCodePrinter):
             return f"{self._CTX[name]}({', '.join(self._print(a) for a in expr.args)})"
         return super()._print_Function(expr)
 
-    _print_tanh = _print_sech = _print_atan2 = _print_Function
+    _print_tanh = _print_sech = _print_atan2 = _print_exp = _print_expm1 = _print_Function
 
     def _print_Pow(self, expr, rational=False):
         base, exp = expr.as_base_exp()

@@ -41,7 +41,8 @@ GENERATED = ROOT / "generated"
 VOLATILE = ("certificate_costs.json", "certificate_costs.tex", "certificate_measurements.json", "cache_report.json")
 
 # the derivations the generated module's formulas come from (and --verify runs)
-MODULE_NEEDS = ("model", "special_case", "kovalevskaya", "meromorphic", "first_integrals", "scattering")
+MODULE_NEEDS = ("model", "special_case", "kovalevskaya", "meromorphic", "first_integrals", "scattering", "gauss",
+                "general_angle")
 # (template, output file, derivations the output needs)
 OUTPUTS = (
     ("init.py.j2", "__init__.py", ()),
@@ -168,7 +169,7 @@ def derive(options: BuildOptions, only: list[str] | None = None, progress: Progr
 
 
 EMITTED_ORDER = ("omega", "omega_general", "lambda_squared", "p_squared_i13_zero", "p_squared_i23_zero",
-                 "special_parameters", "scattering_angle")
+                 "special_parameters", "scattering_angle", "gauss_invariants", "general_angle")
 
 
 def _scattering_keys(build: Build) -> str:

@@ -263,6 +263,55 @@ SECTIONS = [
     """,
             '_angle.scattering_angle_ball(_scattering_angle, p, d, prec)'),
     ]),
+    ('scattering angle of every body (closed form)', [
+        PublicFunction(
+            'general_scattering_angle',
+            'I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, I23: ArrayLike',
+            'np.ndarray',
+            r"""Scattering angle Delta psi of any body (paper's frame: I12 = 0, a = e3), in closed form.
+
+    With s = sinh t the Poisson equations of every body are Gauss's hypergeometric equation
+    (certified: ``gauss``), and the angle between the limit rotation axes is ::
+
+        cos^2(Delta psi/2) = [cosh(pi U) |tau|^2 - Re(tau^2)] / (2 sinh^2(pi U)),
+        tau = 2 cos(pi kappa),  kappa = (i/2) w_-,  w_-^2 = (u - i v).(u - i v),  U = |u|
+
+    for omega = u tanh t + v sech t (eq:o12); for I13 = 0 it is Theorem 5.2 (corrected), certified
+    exactly.  Evaluated in a form with no cancellation and no overflow (``_general_angle``); the
+    entries broadcast like NumPy arrays, I11, I22 > 0, not I13 = I23 = 0 (the equilibrium).
+    Error bound (numeric evidence against :func:`general_scattering_angle_mp`): absolute
+    ``1e-13 (1 + |Y|)`` with ``|Y| = |Im w_-|`` (the phase pi Y/2 carries the rounding of Y).
+
+    >>> round(float(general_scattering_angle(1.25, 1, 0.3, -0.5)), 12)
+    2.9591441765
+    """,
+            '_general.general_scattering_angle(_gauss_invariants, _general_angle, I11, I22, I13, I23)'),
+        PublicFunction(
+            'general_scattering_angle_mp',
+            'I11, I22, I13, I23, dps: int | None = None',
+            '',
+            r"""mpmath twin of :func:`general_scattering_angle` (scalars; strings for exact decimals) at ``dps``
+    digits (default: ``mpmath.mp.dps``).
+
+    >>> mpmath.nstr(general_scattering_angle_mp("5/4", 1, "3/10", "-1/2", dps=30), 25)
+    '2.959144176500328519'
+    """,
+            '_general.general_scattering_angle_mp(_gauss_invariants, _general_angle, I11, I22, I13, I23, dps)'),
+        PublicFunction(
+            'general_scattering_angle_ball',
+            'I11, I22, I13, I23, prec: int | None = None',
+            '',
+            r"""Ball enclosure (python-flint ``arb``) of the closed form of :func:`general_scattering_angle`
+    at ``prec`` bits (default: ``flint.ctx.prec``): ints, Fractions or decimal strings are exact,
+    floats their binary value.  The validated-integration route that checks it is
+    :func:`suslov.validated.scattering_angle_enclosure` with ``method="integration"``.
+
+    >>> ball = general_scattering_angle_ball("5/4", 1, "3/10", "-1/2", prec=1000)
+    >>> ball.rad() < 1e-290, round(float(ball.mid()), 12)
+    (True, 2.9591441765)
+    """,
+            '_general.general_scattering_angle_ball(_gauss_invariants, _general_angle, I11, I22, I13, I23, prec)'),
+    ]),
     ('numeric inertia tensors', [
         PublicFunction(
             'special_case_parameters',

@@ -39,6 +39,7 @@ from pathlib import Path
 
 import mpmath
 import sympy as sp
+from sympy.codegen.cfunctions import expm1
 
 from derivations.core.certificates import (
     Certificate,
@@ -63,6 +64,8 @@ class SymbolicContext:
     sech = staticmethod(sp.sech)
     sqrt = staticmethod(sp.sqrt)
     atan2 = staticmethod(sp.atan2)
+    exp = staticmethod(sp.exp)
+    expm1 = staticmethod(expm1)
 
     @staticmethod
     def tanh_sech(t):

@@ -6,7 +6,8 @@ module provides the two run-time contexts; the build's round-trip certificate pa
 third, symbolic context (``derivations.output.roundtrip``) to the *same emitted function* and
 compares the result with the certified expression exactly.
 
-``FLOAT.sech`` is ``2 e^-|t| / (1 + e^-2|t|)``, which cannot overflow; ``MP`` uses
+``exp`` and ``expm1`` serve the general scattering angle, whose emitted form has only
+exponentials of non-positive arguments (no overflow).  ``FLOAT.sech`` is ``2 e^-|t| / (1 + e^-2|t|)``, which cannot overflow; ``MP`` uses
 mpmath at the caller's working precision.
 """
 from __future__ import annotations
@@ -67,6 +68,15 @@ class FloatContext:
     def atan2(y, x):
         return np.arctan2(y, x)
 
+    @staticmethod
+    def exp(x):
+        with np.errstate(under="ignore"):
+            return np.exp(x)
+
+    @staticmethod
+    def expm1(x):
+        return np.expm1(x)
+
 
 class MpContext:
     """mpmath building blocks (precision set by the caller's ``workdps``)."""
@@ -80,6 +90,8 @@ class MpContext:
 
     sqrt = staticmethod(mpmath.sqrt)
     atan2 = staticmethod(mpmath.atan2)
+    exp = staticmethod(mpmath.exp)
+    expm1 = staticmethod(mpmath.expm1)
 
 
 class ArbContext:
@@ -107,6 +119,14 @@ class ArbContext:
     @staticmethod
     def atan2(y, x):
         return arb.atan2(arb(y), arb(x))
+
+    @staticmethod
+    def exp(x):
+        return arb(x).exp()
+
+    @staticmethod
+    def expm1(x):
+        return arb(x).expm1()
 
 
 FLOAT = FloatContext()

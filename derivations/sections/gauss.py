@@ -1,0 +1,232 @@
+"""The Poisson equations of every body as Gauss's hypergeometric equation (the open problem, closed form).
+
+Paper: eq:whole (``gamma' = gamma x omega``), eq:o12 (``omega = u tanh t + v sech t`` for any body
+with I12 = 0, a = e3), eq:genhipprep and the Conclusion, which leaves the general case open.  The
+paper reaches Gauss's equation only for I13 = 0 (eq:ghyp, through z = sech^2 t and a third-order
+equation); here every body gets it, by a different change of variable.  Every step is an exact
+zero test (:mod:`derivations.core.exact`):
+
+1. **s = sinh t.**  ``ds/dt = cosh t``, ``tanh t = s/cosh t``, ``sech t = 1/cosh t`` and
+   ``cosh^2 t = 1 + s^2`` give ``dgamma/ds = gamma x Omega(s)``, ``Omega(s) = (u s + v)/(1 + s^2)``:
+   a Fuchsian system with exactly three singular points, ``s = i``, ``-i``, ``oo``, residues
+   ``(u - i v)/2``, ``(u + i v)/2`` and ``-u`` (partial fractions; at infinity in ``z = 1/s``).
+2. **Spinor lift.**  With ``S(w) = -(i/2) (w1 sigma3 + w2 sigma1 + w3 sigma2)`` (a Lie algebra
+   isomorphism so(3) -> sl(2): ``[S(a), S(b)] = S(a x b)``), ``Psi' = -S(Omega) Psi`` lifts the
+   Poisson equations: ``Psi S(gamma0) Psi^-1 = S(gamma)`` solves them (``[-S(Omega), S(g)] = S(g x
+   Omega)``).  The lift is again Fuchsian with the same three points; its residues are traceless with
+   eigenvalues ``+-(1/2)`` those of the cross-product residues, so the exponent differences are
+   ``kappa = (i/2) w_-`` at s = i, ``mu = (i/2) w_+`` at s = -i and ``i U`` at infinity,
+   ``w_-+^2 = (u -+ i v).(u -+ i v)``, ``U^2 = u.u``.
+3. **Frame.**  A rotation about e3 (the cross product is covariant: ``(aR) x (bR) = (a x b)R``,
+   ``det R = 1``) puts ``u = (U, 0, 0)``, ``v = (v1, v2, 0)`` with ``U v1 = u.v`` and
+   ``U v2 = (u x v)_3``; for a body, ``(u x v)_3 = -I11 I22 r/(I11 I23^2 + I13^2 I22) != 0``.
+4. **Scalar equation without apparent singularity.**  In that frame the residue at infinity of the
+   lift is diagonal, so the off-diagonal entry of ``-S(Omega)`` is ``(i/2) v2/(1 + s^2)``: no zero in
+   the finite plane.  Eliminating psi2 gives, for ``y = psi1``,
+   ``y'' + 2s/(1+s^2) y' - (a' + 2 s a/(1+s^2) + a^2 + b^2) y = 0`` with ``a = (i/2)(U s + v1)/(1+s^2)``,
+   ``b = (i/2) v2/(1+s^2)``: Fuchsian with the same three singular points (Riemann's equation).
+5. **Gauss.**  ``z = (1 + i s)/2`` sends ``s = i, -i, oo`` to ``z = 0, 1, oo``, and
+   ``y = z^(kappa/2) (1-z)^(mu/2) F(z)`` turns it into
+   ``z(1-z) F'' + (C - (A+B+1) z) F' - A B F = 0``, ``A = (2 + kappa + mu + i U)/2``,
+   ``B = (kappa + mu - i U)/2``, ``C = 1 + kappa``: exponent differences kappa, mu and ``1 + i U`` (the
+   lift's ``i U`` shifted by the integer 1 in the component psi1, which matters for the parity test of
+   Kimura's theorem, :mod:`derivations.sections.general_galois`),
+   certified in ``Q(U, v1, v2, z)[kappa, mu, i]`` modulo ``kappa^2 = -w_-^2/4``, ``mu^2 = -w_+^2/4``:
+   both square-root branches at once.  Every solution of the Poisson equations of every body is
+   therefore a quadratic expression in ``z^(kappa/2)(1-z)^(mu/2)`` times 2F1 functions and their
+   derivatives (``psi2 = (psi1' - a psi1)/b``).
+6. **The body's invariants.**  ``U^2``, ``|u|^2 - |v|^2``, ``u.v`` and ``(u x v)_3`` as rational functions
+   of the inertia tensor (and r = sqrt(I11 I22)), and ``w_-^2 = -conj(Lambda^2)``: the Kovalevskaya
+   exponent of eq:kowal fixes the exponent difference at ``s = i``.  These are emitted
+   (``_gauss_invariants``) for the general scattering angle (:mod:`derivations.sections.general_angle`).
+"""
+from __future__ import annotations
+
+import sympy as sp
+
+from derivations.core.certificates import CertificateLog
+from derivations.core.differential import S, T
+from derivations.core.emit import Emitted
+from derivations.core.exact import Domain, Extension, certify_zero
+from derivations.core.result import DerivationResult
+from derivations.core.symbols import I11, I13, I22, I23, r, w1, w2
+from derivations.sections.model import R_EXT
+
+NAME = "gauss"
+TITLE = "The general case in closed form: Gauss's hypergeometric equation for every body"
+REQUIRES = ("model",)
+
+j = sp.Symbol("j")                       # the imaginary unit as an extension (j^2 = -1)
+s, z, F0, F1, F2 = sp.symbols("s z F F1 F2")
+U, v1, v2 = sp.symbols("U v1 v2")
+kappa, mu = sp.symbols("kappa mu")
+u_ = sp.symbols("u1:4")
+v_ = sp.symbols("v1:4", real=True)
+g_ = sp.symbols("g1:4")
+psi1, psi2 = sp.symbols("psi1 psi2")
+I_EXT = Extension(j, sp.Integer(-1), "j = i = sqrt(-1)")
+W_MINUS2 = (U - j * v1) ** 2 - v2**2     # (u - i v).(u - i v) in the frame u = (U, 0, 0)
+W_PLUS2 = (U + j * v1) ** 2 - v2**2
+KAPPA_EXT = Extension(kappa, -W_MINUS2 / 4, "kappa = (i/2) w_-, either root")
+MU_EXT = Extension(mu, -W_PLUS2 / 4, "mu = (i/2) w_+, either root")
+COMPLEX = Domain("Q(u, v, s)[i]/(i^2+1)", (I_EXT,))
+TS = Domain("Q(u, v)[T][S]/(S^2+T^2-1)", (Extension(S, 1 - T**2, "S = sech t"),))
+GAUSS = Domain("Q(U, v1, v2, z)[kappa, mu, i]/(kappa^2 + w_-^2/4, mu^2 + w_+^2/4, i^2+1)", (KAPPA_EXT, MU_EXT, I_EXT))
+BODY = Domain("Q(I11,I22,I13,I23)[r, i]/(r^2-I11 I22, i^2+1)", (R_EXT, I_EXT))
+PLAIN = Domain("Q(a, b, g)")
+
+
+def spinor(w) -> sp.Matrix:
+    """S(w) = -(i/2)(w1 sigma3 + w2 sigma1 + w3 sigma2), with i as the extension symbol j."""
+    return -j / 2 * sp.Matrix([[w[0], w[1] - j * w[2]], [w[1] + j * w[2], -w[0]]])
+
+
+def cross(a, b) -> list:
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def body_invariants(u, v) -> dict:
+    """U^2, |u|^2 - |v|^2, u.v and (u x v)_3 of omega = u tanh t + v sech t (u, v in the plane)."""
+    return {"U2": u[0] ** 2 + u[1] ** 2, "a": u[0] ** 2 + u[1] ** 2 - v[0] ** 2 - v[1] ** 2,
+            "uv": u[0] * v[0] + u[1] * v[1], "cross": u[0] * v[1] - u[1] * v[0]}
+
+
+DEN = I11 * I23**2 + I13**2 * I22
+# the closed forms of the invariants (their products keep every difference of inputs explicit: no cancellation)
+INVARIANTS = {"U2": I11**2 * I22**2 * (I13**2 + I23**2) / DEN**2,
+              "a": I11 * I22 * (I11 - I22) * (I13**2 * I22 - I11 * I23**2) / DEN**2,
+              "uv": r * I11 * I13 * I22 * I23 * (I11 - I22) / DEN**2,
+              "cross": -I11 * I22 * r / DEN}
+
+
+def run(log: CertificateLog, options, model_result) -> DerivationResult:
+    result = DerivationResult(NAME)
+    u3, v3 = list(u_[:2]) + [0], list(v_[:2]) + [0]
+
+    # 1. s = sinh t: dgamma/dt = (ds/dt) dgamma/ds with s = T/S, ds/dt = cosh t = 1/S
+    s_of_t = T / S
+    omega_s = [(uk * s_of_t + vk) / (1 + s_of_t**2) for uk, vk in zip(u_[:2], v_[:2])]
+    c_sinh = certify_zero(log, "with s = sinh t: (ds/dt) Omega(s) = u tanh t + v sech t for Omega(s) = (u s + v)/(1 + s^2), "
+                          "so dgamma/ds = gamma x Omega(s)", "eq:whole",
+                          [w / S - (uk * T + vk * S) for w, uk, vk in zip(omega_s, u_[:2], v_[:2])], TS)
+    partial = [(uk * s + vk) / (1 + s**2) - ((uk - j * vk) / 2 / (s - j) + (uk + j * vk) / 2 / (s + j))
+               for uk, vk in zip(u_[:2], v_[:2])]
+    c_partial = certify_zero(log, "Omega(s) = ((u - i v)/2)/(s - i) + ((u + i v)/2)/(s + i): simple poles at s = +-i "
+                             "with residues (u -+ i v)/2", "eq:whole", partial, COMPLEX)
+    zeta = sp.Symbol("zeta")
+    at_infinity = [-(uk / zeta + vk) / (1 + 1 / zeta**2) / zeta**2 - (-(uk + vk * zeta) / (zeta * (1 + zeta**2)))
+                   for uk, vk in zip(u_[:2], v_[:2])]
+    c_infinity = certify_zero(log, "in zeta = 1/s: dgamma/dzeta = gamma x (-(u + v zeta)/(zeta (1 + zeta^2))): a simple "
+                              "pole at s = oo with residue -u; no other singular point", "eq:whole", at_infinity,
+                              Domain("Q(u, v, zeta)"))
+
+    # 2. the spinor lift
+    c_algebra = certify_zero(log, "[S(a), S(b)] = S(a x b) for S(w) = -(i/2)(w1 sigma3 + w2 sigma1 + w3 sigma2): "
+                             "so(3) = sl(2) as Lie algebras", "derived",
+                             list(spinor(u_) * spinor(g_) - spinor(g_) * spinor(u_) - spinor(cross(u_, g_))),
+                             Domain("Q(a, b)[i]/(i^2+1)", (I_EXT,)))
+    c_lift = certify_zero(log, "spinor lift: Psi' = -S(Omega) Psi gives (Psi S(g0) Psi^-1)' = [-S(Omega), S(g)] = "
+                          "S(g x Omega): the Poisson equations are the adjoint of a traceless 2x2 Fuchsian system",
+                          "eq:whole", list(-spinor(u_) * spinor(g_) + spinor(g_) * spinor(u_) - spinor(cross(g_, u_))),
+                          Domain("Q(a, b)[i]/(i^2+1)", (I_EXT,)))
+    lam = sp.Symbol("lambda")
+    char = (lam * sp.eye(2) + spinor(u_)).det() - (lam**2 + (u_[0] ** 2 + u_[1] ** 2 + u_[2] ** 2) / 4)
+    c_half = certify_zero(log, "det(lambda + S(w)) = lambda^2 + (w.w)/4: the lift's residues have eigenvalues "
+                          "+-(i/2) sqrt(w.w), half the cross product's; exponent differences kappa = (i/2) w_- at "
+                          "s = i, mu = (i/2) w_+ at s = -i, i U at s = oo", "derived", sp.expand(char),
+                          Domain("Q(w, lambda)[i]/(i^2+1)", (I_EXT,)))
+    R = sp.Matrix([[sp.Symbol("cth"), sp.Symbol("sth"), 0], [-sp.Symbol("sth"), sp.Symbol("cth"), 0], [0, 0, 1]])
+    rot = lambda vec: list(sp.Matrix([vec]) * R)  # noqa: E731
+    c_frame = certify_zero(log, "(a R) x (b R) = (a x b) R for a rotation R about e3: in the frame u = (U, 0, 0) the "
+                           "Poisson equations keep their form, U^2 = u.u, U v1 = u.v, U v2 = (u x v)_3", "derived",
+                           [x - y for x, y in zip(cross(rot(u_), rot(g_)), rot(cross(u_, g_)))],
+                           Domain("Q(a, b, sth)[cth]/(cth^2 + sth^2 - 1)",
+                                  (Extension(sp.Symbol("cth"), 1 - sp.Symbol("sth") ** 2, "cos theta"),)))
+
+    # 3. the scalar equation for y = psi1 (frame u = (U, 0, 0), v = (v1, v2, 0))
+    A = -spinor([U * s + v1, v2, 0]) / (1 + s**2)
+    a, b, c = A[0, 0], A[0, 1], A[1, 0]
+    dpsi1, dpsi2 = a * psi1 + b * psi2, c * psi1 - a * psi2
+    y1 = dpsi1
+    y2 = sp.diff(a, s) * psi1 + a * dpsi1 + sp.diff(b, s) * psi2 + b * dpsi2
+    P = 2 * s / (1 + s**2)
+    Q = -(sp.diff(a, s) + P * a + a**2 + b * c)
+    c_scalar = certify_zero(log, "y = psi1 of the lift solves y'' + P y' + Q y = 0, P = 2s/(1+s^2), "
+                            "Q = -(a' + P a + a^2 + b c): the off-diagonal b = (i/2) v2/(1+s^2) has no zero, so no "
+                            "apparent singularity", "derived", y2 + P * y1 + Q * psi1,
+                            Domain("Q(U, v1, v2, s, psi)[i]/(i^2+1)", (I_EXT,)))
+    c_bc = certify_zero(log, "b c = -(v2/2)^2/(1+s^2)^2 and a^2 + b c = -(Omega.Omega)/4 (frame u = (U,0,0))", "derived",
+                        [b * c + (v2 / 2) ** 2 / (1 + s**2) ** 2,
+                         a**2 + b * c + ((U * s + v1) ** 2 + v2**2) / (4 * (1 + s**2) ** 2)], COMPLEX)
+
+    # 4. Moebius z = (1 + i s)/2 and the gauge z^(kappa/2) (1-z)^(mu/2): Gauss's equation
+    s_of_z = j * (1 - 2 * z)                     # z = (1 + i s)/2
+    dz = j / 2                                   # dz/ds
+    Pz, Qz = (P.subs(s, s_of_z), Q.subs(s, s_of_z))
+    lphi = kappa / (2 * z) - mu / (2 * (1 - z))  # phi'/phi, phi = z^(kappa/2) (1-z)^(mu/2)
+    phi2 = sp.diff(lphi, z) + lphi**2            # phi''/phi
+    L_over_phi = dz**2 * (F2 + 2 * lphi * F1 + phi2 * F0) + Pz * dz * (F1 + lphi * F0) + Qz * F0
+    A_, B_, C_ = (2 + kappa + mu + j * U) / 2, (kappa + mu - j * U) / 2, 1 + kappa
+    gauss = z * (1 - z) * F2 + (C_ - (A_ + B_ + 1) * z) * F1 - A_ * B_ * F0
+    c_gauss = certify_zero(log, "z = (1 + i s)/2, y = z^(kappa/2) (1-z)^(mu/2) F: the scalar equation is -1/4 "
+                           "(z(1-z))^-1 times Gauss's z(1-z)F'' + (C-(A+B+1)z)F' - AB F, A = (2+kappa+mu+iU)/2, "
+                           "B = (kappa+mu-iU)/2, C = 1 + kappa (both roots kappa, mu at once)", "eq:ghyp",
+                           L_over_phi + gauss / (4 * z * (1 - z)), GAUSS)
+    c_points = certify_zero(log, "z = (1 + i s)/2 sends s = i, -i to z = 0, 1 (and oo to oo); 1 + s^2 = 4 z (1-z)",
+                            "derived", [(1 + j * j) / 2, (1 - j * j) / 2 - 1, 1 + s_of_z**2 - 4 * z * (1 - z)],
+                            Domain("Q(z)[i]/(i^2+1)", (I_EXT,)))
+    c_exponents = certify_zero(log, "Riemann scheme of the Gauss equation: 1 - C = -kappa (z = 0), C - A - B = -mu "
+                               "(z = 1), A - B = 1 + i U (z = oo): the lift's exponent differences kappa, mu, i U, the last shifted by "
+                               "the integer 1 in the scalar equation of psi1", "derived",
+                               [1 - C_ + kappa, C_ - A_ - B_ + mu, A_ - B_ - 1 - j * U], GAUSS)
+
+    # 5. the body's invariants, from the certified omega (model)
+    solution = model_result.exports["solution"]
+    u = [sp.diff(solution[w], T) for w in (w1, w2)]
+    v = [sp.diff(solution[w], S) for w in (w1, w2)]
+    inv = body_invariants(u, v)
+    c_inv = certify_zero(log, "U^2 = I11^2 I22^2 (I13^2 + I23^2)/D^2, |u|^2 - |v|^2 = I11 I22 (I11 - I22)(I13^2 I22 - "
+                         "I11 I23^2)/D^2, u.v = r I11 I13 I22 I23 (I11 - I22)/D^2, (u x v)_3 = -I11 I22 r/D, "
+                         "D = I11 I23^2 + I13^2 I22, (u x v)_3^2 = I11^3 I22^3/D^2", "eq:o12",
+                         [inv[k] - INVARIANTS[k] for k in INVARIANTS] + [inv["cross"] ** 2 - I11**3 * I22**3 / DEN**2],
+                         BODY)
+    lam2 = (I11 * I22 * (I11 - I22) * (I11 * I23**2 - I13**2 * I22) - 2 * j * I11 * I13 * I22 * I23 * r * (I11 - I22)) / DEN**2
+    w_minus2 = inv["a"] - 2 * j * inv["uv"]
+    c_lambda = certify_zero(log, "w_-^2 = (u - i v).(u - i v) = -conj(Lambda^2) (Lambda: the Kovalevskaya exponent "
+                            "of eq:kowal, m3 = i sqrt(I11 I22)); for I13 = 0 it is -p^2", "eq:kowal",
+                            [w_minus2 + lam2.subs(j, -j), (w_minus2 + I22 * (I11 - I22) / I23**2).subs(I13, 0)], BODY)
+
+    result.formula("gauss_system", "eq:whole", "The Poisson equations in $s=\\sinh t$: three singular points",
+                   r"\frac{d\gamma}{ds}=\gamma\times\frac{u\,s+v}{1+s^2}=\gamma\times\Big(\frac{(u-iv)/2}{s-i}"
+                   r"+\frac{(u+iv)/2}{s+i}\Big),\quad \operatorname{Res}_{s=\infty}=-u",
+                   c_sinh, c_partial, c_infinity)
+    result.formula("gauss_lift", "derived", "Spinor lift and exponent differences",
+                   r"\Psi'=-S(\Omega)\Psi,\ S(w)=-\tfrac i2(w_1\sigma_3+w_2\sigma_1+w_3\sigma_2),\ "
+                   r"\Psi S(\gamma_0)\Psi^{-1}=S(\gamma),\quad \kappa=\tfrac i2 w_-,\ \mu=\tfrac i2 w_+,\ iU,"
+                   r"\quad w_\mp^2=(u\mp iv)\cdot(u\mp iv)=|u|^2-|v|^2\mp 2i\,u\cdot v",
+                   c_algebra, c_lift, c_half, c_frame)
+    result.formula("gauss_equation", "eq:ghyp", "Gauss's equation for every body",
+                   r"\psi_1=z^{\kappa/2}(1-z)^{\mu/2}F(z),\ z=\tfrac{1+is}2,\quad "
+                   r"z(1-z)F''+\big(C-(A+B+1)z\big)F'-ABF=0,\quad A=\tfrac{2+\kappa+\mu+iU}2,\ B=\tfrac{\kappa+\mu-iU}2,\ "
+                   r"C=1+\kappa",
+                   c_scalar, c_bc, c_gauss, c_points, c_exponents)
+    result.formula("gauss_invariants", "eq:o12", "The exponents of a body",
+                   r"U^2=\frac{I_{11}^2I_{22}^2(I_{13}^2+I_{23}^2)}{D^2},\ w_-^2=-\overline{\Lambda^2}"
+                   r"=\frac{I_{11}I_{22}(I_{11}-I_{22})\big(I_{13}^2I_{22}-I_{11}I_{23}^2-2i\,r\,I_{13}I_{23}\big)}{D^2},"
+                   r"\quad D=I_{11}I_{23}^2+I_{13}^2I_{22},\ r=\sqrt{I_{11}I_{22}}", c_inv, c_lambda)
+    result.notes.append("Exponent differences: kappa = (i/2) w_- at s = i (z = 0), mu = (i/2) w_+ at s = -i (z = 1), "
+                        "i U at s = oo (z = oo); for real u, v, w_+ = conj(w_-), so mu = -conj(kappa).")
+
+    # the emitted invariants: r = sqrt(I11) sqrt(I22); a = |u|^2 - |v|^2, b = -2 u.v (w_-^2 = a + i b),
+    # c2 = (u x v)_3^2 = U^2 v2^2
+    i11, i22, i13, i23 = sp.symbols("I11 I22 I13 I23", positive=True)
+    sub = {I11: i11, I22: i22, I13: i13, I23: i23}
+    den = DEN.subs(sub)
+    emit = [Emitted("gauss_invariants", (i11, i22, i13, i23), ((r, sp.sqrt(i11) * sp.sqrt(i22)),),
+                    (INVARIANTS["U2"].subs(sub), INVARIANTS["a"].subs(sub), -2 * INVARIANTS["uv"].subs(sub),
+                     i11**3 * i22**3 / den**2),
+                    (c_inv.key, c_lambda.key),
+                    "(U^2, a, b, c2) of a body: w_-^2 = a + i b = (u - i v).(u - i v), U^2 = u.u, c2 = (u x v)_3^2.")]
+    result.exports.update(emit=emit, certificates={"gauss": c_gauss.key, "invariants": c_inv.key,
+                                                   "lambda": c_lambda.key, "lift": c_lift.key})
+    return result

@@ -1,0 +1,87 @@
+"""Arguments of the closed-form scattering angle of any body, in float64, mpmath and ball arithmetic.
+
+The general case in closed form (``derivations.sections.gauss`` and ``general_angle``): with
+``s = sinh t`` the Poisson equations are Gauss's equation, and the scattering angle of *any* body is
+
+    cos^2(Delta psi/2) = [cosh(pi U) |tau|^2 - Re(tau^2)] / (2 sinh^2(pi U)),  tau = 2 cos(pi kappa),
+
+``kappa = (i/2) w_-``, ``w_-^2 = a + i b = (u - i v).(u - i v)``, ``U^2 = u.u``.  The generated module's
+emitted ``_general_angle(ctx, h, g, s, c)`` evaluates it in a form without cancellation or overflow;
+this module computes its four arguments from the emitted invariants ``(U^2, a, b, c2)`` of the body
+(``_gauss_invariants``; ``c2 = (u x v)_3^2``):
+
+* ``w_- = X + i Y`` by the stable complex square root: ``X^2 = (|w^2| + a)/2`` when ``a >= 0`` (then
+  ``Y = b/(2X)``), else ``Y^2 = (|w^2| - a)/2`` (then ``X = |b|/(2|Y|)``), so no difference of nearly
+  equal numbers; only ``|Y|`` is needed (the angle is even in Y).
+  (float64: ``suslov.runtime.general_angle`` scales first, so nothing overflows.)
+* the gap ``U - X = 2 c2 / ((U^2 + |v|^2 + |w^2|) (U + X))``, from
+  ``(U^2 + |v|^2)^2 - |w^2|^2 = 4 U^2 v2^2 = 4 c2`` (certified by the build): positive for every body
+  (``c2 = I11^3 I22^3 / D^2 > 0``), computed without cancellation even where the angle is small.
+* ``h = pi U/2``, ``g = pi (U - X)/2``, ``s = |sin(pi Y/2)|``, ``c = |cos(pi Y/2)|`` (in float64 with
+  Y reduced modulo 2 exactly: ``suslov.kernel.phase.half_pi_parts``).
+
+``U^2 + |v|^2 = 2 U^2 - a >= U^2`` (``a <= U^2``), so that sum loses nothing either.  No SymPy, no
+``generated`` import (the kernel layer).
+"""
+from __future__ import annotations
+
+import mpmath
+import numpy as np
+from flint import arb
+
+__all__ = ["float_lengths", "mp_arguments", "arb_arguments"]
+
+
+def float_lengths(U2, a, b, c2) -> tuple:
+    """(U, U - X, |Y|) in float64 (arrays broadcast) from the invariants of the bodies; the caller
+    scales them (they are lengths: degree -1 in (I13, I23)) and forms h, g, s, c."""
+    U2, a, b, c2 = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (U2, a, b, c2)))
+    b = np.abs(b)
+    modulus = np.hypot(a, b)
+    positive = a >= 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        big = np.sqrt(0.5 * (modulus + np.abs(a)))          # X when a >= 0, |Y| otherwise
+        small = np.where(big > 0, 0.5 * b / big, 0.0)       # the other one, from X |Y| = |b|/2
+    X = np.where(positive, big, small)
+    Y = np.where(positive, small, big)
+    U = np.sqrt(U2)
+    gap = 2.0 * c2 / ((2.0 * U2 - a + modulus) * (U + X))
+    return U, gap, Y
+
+
+def _complex_root_parts(a, b, sqrt):
+    b = abs(b)
+    modulus = sqrt(a * a + b * b)
+    big = sqrt((modulus + abs(a)) / 2)
+    small = b / (2 * big) if big != 0 else 0 * b
+    return (big, small, modulus) if a >= 0 else (small, big, modulus)
+
+
+def mp_arguments(U2, a, b, c2) -> tuple:
+    """(h, g, s, c) in mpmath at the working precision (mpf inputs)."""
+    X, Y, modulus = _complex_root_parts(a, b, mpmath.sqrt)
+    U = mpmath.sqrt(U2)
+    gap = 2 * c2 / ((2 * U2 - a + modulus) * (U + X))
+    return mpmath.pi * U / 2, mpmath.pi * gap / 2, abs(mpmath.sinpi(Y / 2)), abs(mpmath.cospi(Y / 2))
+
+
+def arb_arguments(U2: arb, a: arb, b: arb, c2: arb) -> tuple:
+    """(h, g, s, c) as balls (precision ``flint.ctx.prec``) containing the exact values at the ball inputs.
+
+    Where the sign of ``a`` is not decided by its ball (a about 0), ``X`` comes from ``(|w^2| + a)/2``,
+    which is positive when ``b != 0``.
+    """
+    b = abs(b)
+    modulus = (a * a + b * b).sqrt()
+    if a < 0:
+        Y = ((modulus - a) / 2).sqrt()
+        X = b / (2 * Y)
+    elif a.is_zero() and b.is_zero():
+        X = Y = arb(0)
+    else:   # a >= 0, or a ball about 0 with b != 0: modulus + a > 0
+        X = ((modulus + a) / 2).sqrt()
+        Y = b / (2 * X)
+    U = U2.sqrt()
+    gap = 2 * c2 / ((2 * U2 - a + modulus) * (U + X))
+    half = Y / 2
+    return arb.pi() * U / 2, arb.pi() * gap / 2, abs(half.sin_pi()), abs(half.cos_pi())
