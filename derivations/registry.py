@@ -17,6 +17,7 @@ from derivations.sections import (
     galois,
     gauss,
     general_angle,
+    general_galois,
     hypergeometric,
     kovalevskaya,
     meromorphic,
@@ -28,7 +29,7 @@ from derivations.sections import (
 
 DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, kovalevskaya, residue, hypergeometric,
                                                    meromorphic, first_integrals, scattering, galois,
-                                                   fuchsian, gauss, general_angle)}
+                                                   fuchsian, gauss, general_angle, general_galois)}
 
 
 def requirements(name: str) -> tuple[str, ...]:

@@ -25,6 +25,7 @@ from flint import acb, arb, ctx
 
 from derivations.core.certificates import stopwatch
 from suslov.kernel.contexts import ARB
+from suslov.kernel.gauss_angle import arb_root
 
 
 def _invariants(source: str, body) -> tuple:
@@ -47,22 +48,11 @@ def _sqrt_clamped(x: arb) -> arb:
     return x.sqrt()
 
 
-def _root(a: arb, b: arb) -> tuple:
-    """(X, Y) with (X + i Y)^2 = a + i b, X >= 0, off the branch cut of acb's sqrt (b = 0, a < 0 is the
-    I13 = 0 case, where a ball about the negative axis would cover both roots)."""
-    modulus = (a * a + b * b).sqrt()
-    if a < 0:
-        size = ((modulus - a) / 2).sqrt()
-        return abs(b) / (2 * size), (-size if b < 0 else size)
-    X = ((modulus + a) / 2).sqrt()
-    return X, b / (2 * X)
-
-
 def closed_form(source: str, body) -> dict:
     """U, tau, tau', m and the angle as balls at ``ctx.prec``."""
     U2, a, b, c2 = _invariants(source, body)
     U = U2.sqrt()
-    X, Y = _root(a, b)                         # w_- = X + i Y, w_+ = X - i Y = conj(w_-)
+    X, Y = arb_root(a, b)                         # w_- = X + i Y, w_+ = X - i Y = conj(w_-)
     kappa, mu = acb(-Y, X) / 2, acb(Y, X) / 2   # (i/2) w_-+
     tau, tau2 = 2 * (kappa).cos_pi(), 2 * (mu).cos_pi()
     m = (-arb.pi() * U).exp()

@@ -29,7 +29,7 @@ import mpmath
 import numpy as np
 from flint import arb
 
-__all__ = ["float_lengths", "mp_arguments", "arb_arguments"]
+__all__ = ["float_lengths", "mp_arguments", "arb_arguments", "arb_root"]
 
 
 def float_lengths(U2, a, b, c2) -> tuple:
@@ -66,22 +66,23 @@ def mp_arguments(U2, a, b, c2) -> tuple:
 
 
 def arb_arguments(U2: arb, a: arb, b: arb, c2: arb) -> tuple:
-    """(h, g, s, c) as balls (precision ``flint.ctx.prec``) containing the exact values at the ball inputs.
-
-    Where the sign of ``a`` is not decided by its ball (a about 0), ``X`` comes from ``(|w^2| + a)/2``,
-    which is positive when ``b != 0``.
-    """
-    b = abs(b)
+    """(h, g, s, c) as balls (precision ``flint.ctx.prec``) containing the exact values at the ball inputs."""
+    X, Y = arb_root(a, b)
     modulus = (a * a + b * b).sqrt()
-    if a < 0:
-        Y = ((modulus - a) / 2).sqrt()
-        X = b / (2 * Y)
-    elif a.is_zero() and b.is_zero():
-        X = Y = arb(0)
-    else:   # a >= 0, or a ball about 0 with b != 0: modulus + a > 0
-        X = ((modulus + a) / 2).sqrt()
-        Y = b / (2 * X)
     U = U2.sqrt()
     gap = 2 * c2 / ((2 * U2 - a + modulus) * (U + X))
-    half = Y / 2
+    half = abs(Y) / 2
     return arb.pi() * U / 2, arb.pi() * gap / 2, abs(half.sin_pi()), abs(half.cos_pi())
+
+
+def arb_root(a: arb, b: arb) -> tuple:
+    """(X, Y) with (X + i Y)^2 = a + i b and X >= 0, as balls, off the branch cut of acb's sqrt (b = 0 with
+    a < 0 is the case I13 = 0, where a complex ball about the negative axis would cover both roots)."""
+    modulus = (a * a + b * b).sqrt()
+    if a < 0:
+        size = ((modulus - a) / 2).sqrt()
+        return abs(b) / (2 * size), (-size if b < 0 else size)
+    if a.is_zero() and b.is_zero():
+        return arb(0), arb(0)
+    X = ((modulus + a) / 2).sqrt()
+    return X, b / (2 * X)

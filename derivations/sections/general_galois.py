@@ -1,0 +1,85 @@
+"""The differential Galois group of the Poisson equations of every body, exactly (the Conclusion's open problem).
+
+Paper: the Conclusion (the monodromy group "in the general case" is left open), Theorem 3.1 and the
+odd-p case.  From :mod:`derivations.sections.gauss`: the spinor lift is gauge-equivalent over C(s),
+s = sinh t, to Gauss's equation with exponent differences ``kappa``, ``mu``, ``1 + iU``.  The theorem
+(proof in :mod:`suslov.kernel.kimura`, the run-time decision):
+
+    **Theorem.**  For a body with I11, I22 > 0, (I13, I23) != 0, the Poisson equations have Liouvillian
+    solutions iff I13 I23 (I11 - I22) = 0 and ``w_-^2 = |u|^2 - |v|^2 = -P^2`` with P an odd integer
+    (equivalently the Kovalevskaya exponent Lambda is an odd integer; for I13 = 0 this is the paper's
+    odd p).  Then the Galois group over C(e^t) is the torus SO(2, C) (reducible); otherwise SO(3, C).
+
+The algebraic steps are exact certificates here: ``w_+^2 = conj(w_-^2)`` for real u, v; ``kappa + mu =
+iX`` and ``kappa - mu = -Y``; half-odd ``kappa`` means ``w_-^2 = -(2 kappa)^2``; the imaginary part of
+``iX +- (1 + iU)`` is ``X +- U``, zero only when the gap ``U - X`` vanishes, which needs ``(u x v)_3 = 0``
+(certified non-zero for every body in ``gauss``); the exact decision agrees with every ball verdict of
+the complex-path monodromy (``fuchsian``).  Kimura's theorem itself (T. Kimura, Funkcialaj Ekvacioj
+12 (1969) 269-281; see also Morales-Ruiz, *Differential Galois Theory and Non-Integrability of
+Hamiltonian Systems*, Thm 2.21) and the classification of algebraic subgroups of SL(2, C) are cited,
+not re-proved.
+"""
+from __future__ import annotations
+
+import sympy as sp
+
+from derivations.core.certificates import Certificate, CertificateLog, Outcome
+from derivations.core.exact import Domain, certify_zero
+from derivations.core.result import DerivationResult
+from derivations.sections.gauss import I_EXT, W_MINUS2, W_PLUS2, U, j, v1, v2
+from suslov.kernel.kimura import galois_group
+
+NAME = "general_galois"
+TITLE = "The differential Galois group of every body, exactly (Kimura's theorem)"
+REQUIRES = ("gauss", "fuchsian")
+
+X, Y, kappa = sp.symbols("X Y kappa")
+REAL = Domain("Q(U, v1, v2, X, Y)[i]/(i^2+1)", (I_EXT,))
+
+
+def run(log: CertificateLog, options, gauss_result, fuchsian_result) -> DerivationResult:
+    result = DerivationResult(NAME)
+    c_conj = certify_zero(log, "for real u, v: w_+^2 = conj(w_-^2), so w_+ = conj(w_-) and mu = -conj(kappa)", "derived",
+                          W_PLUS2 - W_MINUS2.subs(j, -j), REAL)
+    k_, m_ = j / 2 * (X + j * Y), j / 2 * (X - j * Y)
+    c_sum = certify_zero(log, "w_- = X + iY: kappa + mu = i X (imaginary), kappa - mu = -Y (real), "
+                         "Im(i X +- (1 + i U)) = X +- U, Im(-Y +- (1 + i U)) = +-U != 0", "derived",
+                         [k_ + m_ - j * X, k_ - m_ + Y,
+                          ((j * X + (1 + j * U)) - (j * X + (1 + j * U)).subs(j, -j)) / (2 * j) - (X + U)], REAL)
+    c_half = certify_zero(log, "kappa^2 = -w_-^2/4: kappa = 1/2 + l (half-odd) iff w_-^2 = -(2l + 1)^2", "derived",
+                          (kappa**2 + W_MINUS2 / 4).subs(kappa, (2 * sp.Symbol("l") + 1) / 2)
+                          - (W_MINUS2 + (2 * sp.Symbol("l") + 1) ** 2) / 4, REAL)
+    rows = fuchsian_result.exports["rows"]
+    disagreements = []
+    for row in rows:
+        exact = galois_group(*row["body"])
+        if row["verdict"] in ("SO(3,C)", "reducible") and row["verdict"] != exact.group:
+            disagreements.append(f"{row['body']}: balls {row['verdict']}, exact {exact.group}")
+    c_agree = log.record(Certificate(
+        "the exact decision (Kimura) agrees with the ball verdicts of the complex-path monodromy on the representative "
+        "bodies (odd, even and non-integer p, I23 = 0, general bodies)", "Conclusion",
+        "comparison of the exact verdicts with the certified ball verdicts", Outcome.FAIL if disagreements else Outcome.PASS,
+        0.0, len(rows), "; ".join(disagreements) or ", ".join(f"({', '.join(r['body'])}): {r['verdict']}" for r in rows)))
+    keys = gauss_result.exports["certificates"]
+    result.formula("general_galois", "Conclusion", "Galois group of every body (theorem)",
+                   [r"\text{Liouvillian}\iff I_{13}I_{23}(I_{11}-I_{22})=0\ \text{and}\ w_-^2=-P^2,\ P\ \text{odd}"
+                    r"\quad(\Lambda=P\ \text{odd})",
+                    r"\mathrm{Gal}=SO(2,\mathbb C)\ \text{(reducible)}\ \text{then},\ \text{else}\ SO(3,\mathbb C)"
+                    r"\quad(\text{over }\mathbb C(e^t);\ \text{over }\mathbb C(\sinh t)\text{: imprimitive, resp. }"
+                    r"SL(2,\mathbb C)\text{ for the spinor lift})"], c_conj, c_sum, c_half, c_agree)
+    result.notes.append(
+        "Proof. The spinor lift is gauge-equivalent over C(sinh t) to Gauss's equation with exponent differences "
+        f"kappa, mu and 1 + iU (certificates {keys['lift']}, {keys['gauss']}); Liouvillian solutions of the Poisson "
+        "equations and of the lift come together (the Poisson equations are its adjoint, a finite quotient). By "
+        "Kimura's theorem they exist iff (i) some +-kappa +- mu +- (1 + iU) is an odd integer or (ii) the exponent "
+        "differences are on Schwarz's list. (i): kappa + mu = iX is imaginary and kappa - mu = -Y real, so the "
+        "candidates have imaginary parts X +- U or +-U; U > 0, and X = U needs (u x v)_3 = 0, which no body has. "
+        "(ii): all families but the first need three real rationals, and 1 + iU is not real; the first needs kappa "
+        "and mu half-odd, i.e. w_-^2 = -(odd)^2, which forces u.v = 0 (w_-^2 real). Then the local monodromies of "
+        "the lift at s = +-i have trace 0 and the one at infinity infinite order: over C(sinh t) the lift's group is "
+        "the normaliser of a torus (imprimitive). In x = e^t the points s = +-i are ramified (s - i ~ (x - i)^2), "
+        "the loops about x = +-i give M^2 = -I, and the Poisson group is the closure of the cyclic group of the "
+        "loop about x = 0: the torus of rotations about u/|u|. Otherwise the identity component is not solvable: "
+        "SL(2, C) for the lift, SO(3, C) for the Poisson equations.")
+    result.exports.update(certificates={"agree": c_agree.key, "conj": c_conj.key})
+    return result
