@@ -91,7 +91,7 @@ def test_verify_refuses_unreadable_certificates_whatever_the_flags(tmp_path, dam
 @pytest.mark.parametrize("value", [float("nan"), "30", 0, 1000, 2.5])
 def test_enclosure_digits_are_validated(value):
     with pytest.raises(ValueError, match=r"digits=.*\[1, 300\]"):
-        scattering_angle_enclosure(2, 1, "0.3", "-0.5", digits=value)
+        scattering_angle_enclosure(2, 1, "0.3", "-0.5", digits=value, method="integration")
 
 
 def test_costly_enclosure_stops_at_max_seconds_and_reports_progress():
@@ -99,7 +99,7 @@ def test_costly_enclosure_stops_at_max_seconds_and_reports_progress():
     start = time.perf_counter()
     with pytest.raises(EnclosureTooCostly, match="max_seconds=2"):
         scattering_angle_enclosure(2, 1, 0, "-1e-4", digits=10, max_seconds=2,
-                                   progress=lambda *a: reports.append(a))
+                                   progress=lambda *a: reports.append(a), method="integration")
     assert time.perf_counter() - start < 10 and reports
 
 

@@ -18,10 +18,6 @@ from flint import acb, arb, ctx
 import suslov as sf
 from suslov.validated import omega_coefficients, scattering_angle_enclosure
 
-NAN_AT_ODD_P = ("BUG: the ball is nan (no enclosure of pi) when Y is exactly an odd integer (I13 = 0 with odd p, "
-                "or I23 = 0 by eq:lina): c = 0 and g = h, so _general_angle's expm1(2g-2h)*expm1(2g-2h) is a ball "
-                "about 0 with a negative lower end, and arb sqrt of the sum under it is nan")
-COMPLEX_BALL = "BUG: general_scattering_angle_ball raises TypeError (to_arb), not ValueError, for complex input"
 
 
 def abs_Y(body):
@@ -125,7 +121,6 @@ def test_ball_against_validated_integration(body):
     assert direct.overlaps(ball) and float((direct - ball).abs_upper()) < 1e-50
 
 
-@pytest.mark.xfail(strict=True, reason=NAN_AT_ODD_P)
 @pytest.mark.parametrize("body", [(2, 1, 0, -1), (2, 1, 0, "-1/3"), (1, 2, 1, 0)])
 def test_ball_at_exactly_odd_p_encloses_pi(body):
     """Theorem 5.2: odd p gives pi (the float and mp twins do; the integration encloses pi for (2, 1, 0, -1))."""
@@ -185,9 +180,7 @@ BAD = [("I11", 0.0), ("I11", -1.0), ("I22", 0), ("I22", -2.0), ("I11", float("na
 
 @pytest.mark.parametrize("func", FUNCS)
 @pytest.mark.parametrize("field,value", BAD)
-def test_bad_input_names_the_field(func, field, value, request):
-    if func == "ball" and isinstance(value, complex):
-        request.applymarker(pytest.mark.xfail(strict=True, reason=COMPLEX_BALL))
+def test_bad_input_names_the_field(func, field, value):
     body = {**BODY, field: value}
     with pytest.raises(ValueError, match=field):
         FUNCS[func](**body)

@@ -114,7 +114,14 @@ class ArbContext:
 
     @staticmethod
     def sqrt(x):
-        return arb(x).sqrt()
+        """Square root of the non-negative part of the ball.  Every square root an emitted formula takes is
+        of a quantity that is >= 0 on its domain (a sum of squares, a product of positive entries), but a
+        ball of it can dip below 0 (``x*x`` of a ball about 0 is not known to be a square): the exact value
+        lies in [0, upper], whose square root is enclosed; a ball entirely below 0 still gives NaN."""
+        x = arb(x)
+        if x.lower() < 0 and not x.upper() < 0:
+            return arb(0).union(x.upper().sqrt())
+        return x.sqrt()
 
     @staticmethod
     def atan2(y, x):

@@ -86,11 +86,14 @@ class AngleEnclosure:
 
 
 def to_arb(name: str, value) -> arb:
-    """An exact ball for an int, Fraction or decimal string; a float is taken as the binary number it is."""
+    """An exact ball for an int, Fraction or decimal string; a float is taken as the binary number it is.
+
+    Anything else (complex, None, a list, a bool) is a ``ValueError`` naming the field, like every input
+    error of the public functions."""
     if isinstance(value, arb):
         return value
     if isinstance(value, bool):
-        raise TypeError(f"{name}={value!r}: a number, not a bool")
+        raise ValueError(f"{name}={value!r}: a number, not a bool")
     if isinstance(value, int):
         return arb(value)
     if isinstance(value, Fraction):
@@ -106,7 +109,7 @@ def to_arb(name: str, value) -> arb:
             raise ValueError(f"{name}={value!r}: must be finite")
         exact = Fraction(value)
         return arb(exact.numerator) / exact.denominator
-    raise TypeError(f"{name}={value!r}: expected int, Fraction, decimal string, float or arb")
+    raise ValueError(f"{name}={value!r}: expected a real int, Fraction, decimal string, float or arb")
 
 
 def _norm_upper(values) -> arb:

@@ -120,7 +120,7 @@ def step_angle_enclosure(run: Run):
     run.results["scattering_angle_enclosure"] = {
         "ball": enclosure.angle.str(25), "midpoint": float(enclosure.angle.mid()),
         "radius": float(enclosure.angle.rad()),
-        "method": "validated integration (limit series + Taylor steps, ball arithmetic), rigorous",
+        "method": "closed form of every body (Gauss's equation in s = sinh t, certified) in ball arithmetic, rigorous",
         "entries_paper_frame": [float(x) for x in run.plan.body.entries]}
 
 
