@@ -54,6 +54,18 @@ def test_explain_shows_the_graph_and_the_providers_not_chosen(tmp_path, body, ch
         assert "not gamma_" not in text
 
 
+@pytest.mark.parametrize("body, chosen", [
+    ("p = 2.5\nd = 0.7", "angle_closed_form"),
+    ("inertia = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]", "angle_general_closed_form"),
+])
+def test_the_angle_is_a_closed_form_and_the_integration_is_asked_for_by_name(tmp_path, body, chosen):
+    plan = make_plan(scene(tmp_path, body, '["scattering_angle"]'))
+    assert plan.names() == [chosen]
+    both = make_plan(scene(tmp_path, body, '["scattering_angle", "scattering_angle_integrated"]'))
+    assert both.names() == [chosen, "angle_integrate"]
+    assert "heyoka Taylor" in both.steps[1].method and "scattering_angle_integrated requested" == both.steps[1].reason
+
+
 def test_scipy_method_is_planned_and_named(tmp_path):
     plan = make_plan(scene(tmp_path, "p = 2.5\nd = 0.7", '["gamma"]', '[numerics]\nmethod = "DOP853"\n'))
     assert plan.scene.method == "scipy:DOP853"

@@ -80,21 +80,50 @@ def test_closed_form_angle_integrates_nothing(tmp_path, monkeypatch):
                                                                        rel=1e-14)
 
 
+GENERAL = OMEGA_ONLY.replace("p = 2.5\nd = 0.7", "inertia = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]")
+
+
+def test_general_body_angle_is_the_closed_form_and_integrates_nothing(tmp_path, monkeypatch):
+    """scattering_angle of a general body (I13 != 0) is the closed form of every body: no integrator runs, and
+    it agrees with the validated integration (an independent route, python-flint balls)."""
+    forbid(monkeypatch, (integrate, "solve_poisson"), (integrate, "numeric_angle"), (taylor, "taylor_angle"),
+           (taylor, "solve_poisson_taylor"), (gf, "scattering_angle"), (gf, "gamma_basis"))
+    plan = make_plan(load_scene(write(tmp_path, GENERAL.replace('["omega"]', '["scattering_angle"]'))))
+    assert "not angle_closed_form [I13 = 0 (any real p)]: does not apply" in plan.explain()
+    run = execute(plan)
+    assert [e["step"] for e in run.executed] == ["angle_general_closed_form"]
+    result = run.results["scattering_angle"]
+    assert result["method"].startswith("closed form of every body") and 0 < result["error_estimate"] < 1e-12
+    ball = scattering_angle_enclosure(*run.plan.body.entries, digits=20, method="integration").angle
+    assert abs(result["radians"] - float(ball.mid())) < 1e-12
+
+
 @pytest.mark.parametrize("method, module, function", [("taylor", taylor, "taylor_angle"),
                                                       ("scipy:DOP853", integrate, "solve_poisson")])
 def test_general_body_is_integrated(tmp_path, monkeypatch, method, module, function):
-    """Taylor integration by default, SciPy on request; both agree with the rigorous ball."""
+    """The integration is asked for by name (scattering_angle_integrated): Taylor by default, SciPy on request;
+    both agree with the rigorous ball of the validated integration."""
     calls = []
     original = getattr(module, function)
     monkeypatch.setattr(module, function, lambda *a, **k: calls.append(1) or original(*a, **k))
-    forbid(monkeypatch, (gf, "scattering_angle"), (gf, "gamma_basis"))
-    text = OMEGA_ONLY.replace("p = 2.5\nd = 0.7", "inertia = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]")
-    text = text.replace('["omega"]', '["scattering_angle"]') + f'[numerics]\nmethod = "{method}"\n'
+    forbid(monkeypatch, (gf, "scattering_angle"), (gf, "general_scattering_angle"), (gf, "gamma_basis"))
+    text = GENERAL.replace('["omega"]', '["scattering_angle_integrated"]') + f'[numerics]\nmethod = "{method}"\n'
     run = execute(make_plan(load_scene(write(tmp_path, text))))
     assert [e["step"] for e in run.executed] == ["angle_integrate"] and calls
-    assert run.results["scattering_angle"]["error_estimate"] < 1e-10
+    assert "scattering_angle" not in run.results
+    result = run.results["scattering_angle_integrated"]
+    assert result["error_estimate"] < 1e-10
     ball = scattering_angle_enclosure(*run.plan.body.entries, digits=20, method="integration").angle
-    assert abs(run.results["scattering_angle"]["radians"] - float(ball.mid())) < 1e-10
+    assert abs(result["radians"] - float(ball.mid())) < 1e-10
+
+
+def test_closed_form_and_integrated_angle_side_by_side(tmp_path):
+    """Both effects in one scene: two steps, two results, agreeing within the integration's estimate."""
+    text = GENERAL.replace('["omega"]', '["scattering_angle_integrated", "scattering_angle"]')
+    run = execute(make_plan(load_scene(write(tmp_path, text))))
+    assert [e["step"] for e in run.executed] == ["angle_general_closed_form", "angle_integrate"]
+    closed, integrated = run.results["scattering_angle"], run.results["scattering_angle_integrated"]
+    assert abs(closed["radians"] - integrated["radians"]) <= integrated["error_estimate"] + closed["error_estimate"]
 
 
 def test_odd_p_gamma_uses_closed_form_and_matches_integration(tmp_path, monkeypatch):

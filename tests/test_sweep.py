@@ -63,11 +63,11 @@ def test_grid_points_methods_and_table(tmp_path):
         assert row["error"] == ""
         angle = float(row["scattering_angle"])
         if i13 == 0:
-            assert row["scattering_angle_method"].startswith("closed form")
+            assert row["scattering_angle_method"] == "closed form (Theorem 5.2)"
         else:
-            assert "Taylor" in row["scattering_angle_method"]
-            assert float(row["scattering_angle_error"]) < 1e-9
-        assert float(row["energy_spread"]) < 1e-9   # energy-independent (two energies per body)
+            assert row["scattering_angle_method"].startswith("closed form of every body")
+            assert float(row["scattering_angle_error"]) < 1e-12
+        assert float(row["energy_spread"]) == 0.0   # the closed forms never see the energy (two per body)
         assert 0 < angle <= np.pi
     assert (out / "map.png").read_bytes()[:4] == b"\x89PNG"
     parquet = pytest.importorskip("pyarrow.parquet").read_table(out / "results.parquet").to_pydict()
@@ -78,7 +78,8 @@ def test_grid_points_methods_and_table(tmp_path):
 
 
 def test_sweep_angles_match_independent_enclosures():
-    """Three seeded general bodies: the sweep's float angle against a 30-digit rigorous ball."""
+    """Three seeded general bodies: the sweep's float angle (the closed form of every body) against a 30-digit
+    rigorous ball of the validated integration, an independent route."""
     rng = np.random.default_rng(15)
     options = {"effects": ["scattering_angle"], "method": "taylor", "kind": "tensor",
                "columns": ["I11", "I22", "I33", "I12", "I13", "I23", "energy"]}
@@ -88,7 +89,7 @@ def test_sweep_angles_match_independent_enclosures():
         body = sweep.point_body(dict(zip(options["columns"], row)), "tensor")
         ball = scattering_angle_enclosure(*body.entries, digits=30, method="integration").angle
         assert float(ball.rad()) < 1e-28
-        assert abs(result["scattering_angle"] - float(ball.mid())) < 1e-10
+        assert abs(result["scattering_angle"] - float(ball.mid())) < 1e-12
 
 
 def test_pd_sweep_uses_the_closed_form_everywhere(tmp_path):
@@ -252,13 +253,14 @@ def test_explain_prints_the_plan_without_computing(tmp_path, monkeypatch, capsys
     assert main(["simulate", str(write(tmp_path, GRID)), "--explain", "--workers", "2"]) == 0
     text = capsys.readouterr().out
     assert "18 points" in text and "grid over I13 (3), I23 (3), energy (2)" in text
-    assert "12 points: angle_integrate" in text and "4 points: angle_closed_form" in text
+    assert "12 points: angle_general_closed_form" in text and "4 points: angle_closed_form" in text
     assert "2 points: refused" in text and "chunks of up to 4 points" in text and "estimated cost" in text
 
 
 def test_enclosure_effect_in_a_sweep_contains_the_float_angle(tmp_path):
     """Both scalar effects per point: the rigorous ball (radius as its error) and the float angle
-    (closed form on I13 = 0, Taylor elsewhere) agree within the ball's radius plus the float estimate."""
+    (Theorem 5.2 on I13 = 0, the closed form of every body elsewhere) agree within the ball's radius plus the
+    float bound."""
     text = ('[sweep]\nI11 = 2.0\nI22 = 1.0\nI33 = 1.5\nI13 = [0.0, 0.2]\nI23 = -0.3\n'
             '[effects]\ncompute = ["scattering_angle", "scattering_angle_enclosure"]\n')
     table, plan, _, _ = sweep.run_sweep(load_scene(write(tmp_path, text)), tmp_path / "out", workers=1)
@@ -268,6 +270,28 @@ def test_enclosure_effect_in_a_sweep_contains_the_float_angle(tmp_path):
         assert 0 < radius < 1e-12 and table["scattering_angle_enclosure_method"][i].endswith("(rigorous)")
         gap = abs(table["scattering_angle"][i] - table["scattering_angle_enclosure"][i])
         assert gap <= radius + table["scattering_angle_error"][i]
+
+
+def test_integrated_angle_column_agrees_with_the_closed_form(tmp_path):
+    """scattering_angle_integrated (Taylor, every point, I13 = 0 included) beside scattering_angle (closed forms):
+    own columns, agreement to 1e-10, and the energy spread is that of the integration (the closed forms' is 0)."""
+    text = GRID.replace('figures = ["map"]', "").replace('compute = ["scattering_angle"]',
+                                                          'compute = ["scattering_angle", "scattering_angle_integrated"]')
+    scene = load_scene(write(tmp_path, text))
+    table, plan, _, _ = sweep.run_sweep(scene, tmp_path / "out", workers=1)
+    assert plan.classes == {("angle_general_closed_form", "angle_integrate"): 12,
+                            ("angle_closed_form", "angle_integrate"): 4, ("refused",): 2}
+    for name in ("scattering_angle_integrated", "scattering_angle_integrated_error", "scattering_angle_integrated_method"):
+        assert name in table
+    closed, integrated = np.array(table["scattering_angle"]), np.array(table["scattering_angle_integrated"])
+    ok = np.isfinite(closed)
+    assert ok.sum() == 16 and np.array_equal(ok, np.isfinite(integrated))
+    assert np.max(np.abs(closed[ok] - integrated[ok])) < 1e-10
+    assert all(m == "heyoka Taylor (ss, lam t = 40)" for m, e in zip(table["scattering_angle_integrated_method"],
+                                                                     table["error"]) if not e)
+    spread = np.array(table["energy_spread"])[ok]
+    pairs = integrated.reshape(-1, 2)
+    assert np.array_equal(spread, np.repeat(pairs.max(axis=1) - pairs.min(axis=1), 2)[ok])
 
 
 def test_readme_quotes_the_general_body_study_as_it_is(tmp_path):

@@ -12,9 +12,14 @@ topological order: a need always comes earlier).  The whole policy is the table
   (Theorem 6.1) when I13 = 0 and p is an odd integer with a certified basis; otherwise numerical
   integration (heyoka's Taylor integrator by default, SciPy on request; ``suslov.simulator.taylor``,
   ``suslov.simulator.integrate``).
-* The scattering angle is the closed form of Theorem 5.2 (corrected) whenever I13 = 0, for any
-  real p; only a general body integrates the ss solution.
-* ``scattering_angle_enclosure`` is always the validated integration (python-flint balls).
+* The scattering angle is always a certified closed form, never an integration: Theorem 5.2
+  (corrected) whenever I13 = 0, for any real p; for every other body the closed form of every
+  body (``general_scattering_angle``: Gauss's equation in s = sinh t).
+* ``scattering_angle_integrated`` is the explicit cross-check: the ss solution integrated to
+  lam t = 40 with the scene's integrator family, for any Suslov body, asked for beside the closed form.
+* ``scattering_angle_enclosure`` is a ball of the closed form of every body
+  (``suslov.validated.scattering_angle_enclosure``, default ``method="closed_form"``), rigorous;
+  the validated integration stays available there as ``method="integration"``.
 * ``integral_drift`` needs omega and gamma; a figure needs the effect it draws, nothing more.
 
 A sweep scene uses the same providers per point (:func:`point_steps`); its plan counts the
@@ -98,16 +103,18 @@ PROVIDERS = (
                                                            else "")),
     Provider("scattering_angle", "angle_closed_form", (), "I13 = 0 (any real p)", _special,
              lambda s, b: "scattering_angle(p, d) (Theorem 5.2, corrected)"),
-    Provider("scattering_angle", "angle_integrate", (), "a general body (I13 != 0): no closed form", _suslov,
+    Provider("scattering_angle", "angle_general_closed_form", (), "any Suslov body (I13 != 0 included)", _suslov,
+             lambda s, b: "the closed form of every body: Gauss's equation in s = sinh t (certified)"),
+    Provider("scattering_angle_integrated", "angle_integrate", (), "any Suslov body (a cross-check)", _suslov,
              lambda s, b: ("heyoka Taylor tol=1e-12" if s.method == "taylor" else "SciPy DOP853 rtol=1e-12")
              + " on ss from the series start to lam t = 40"),
     Provider("scattering_angle_enclosure", "angle_enclosure", (), "any Suslov body", _suslov,
-             lambda s, b: "validated integration in ball arithmetic (suslov.validated), 1e-20"),
+             lambda s, b: "the closed form of every body in ball arithmetic (suslov.validated), 1e-20"),
     Provider("galois_group", "galois_monodromy", (), "any Suslov body", _suslov,
              lambda s, b: "monodromy matrices as balls along complex loops, group decided (suslov.validated.monodromy)"),
 )
 ORDER = ("omega", "contact_point", "gamma", "orientation", "integral_drift", "scattering_angle",
-         "scattering_angle_enclosure", "galois_group")
+         "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group")
 
 
 @dataclass

@@ -21,8 +21,13 @@ A scene is declarative: it names the effects wanted, never the method.  Schema::
     speed = 1.0                            # sleigh only: limit speed of the blade
 
     [effects]
-    compute = ["omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_enclosure",
-               "galois_group"]             # galois_group: the certified monodromy verdict (suslov.validated.monodromy)
+    compute = ["omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_integrated",
+               "scattering_angle_enclosure", "galois_group"]
+                                           # scattering_angle: a certified closed form for every body;
+                                           # scattering_angle_integrated: the same angle by integrating ss
+                                           # (the [numerics] integrator family), a cross-check beside it;
+                                           # scattering_angle_enclosure: a rigorous ball (python-flint);
+                                           # galois_group: the certified monodromy verdict (suslov.validated.monodromy)
     figures = ["omega_plane", "gamma_components", "basis_sphere"]
     figures_format = ["png", "pdf"]        # optional, default ["png"]; also "svg"
 
@@ -53,8 +58,8 @@ from suslov.loader import gf
 from suslov.simulator.scene_errors import SceneError
 from suslov.simulator.sweep_spec import parse_sweep
 
-EFFECTS = ("omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_enclosure",
-           "contact_point", "galois_group")
+EFFECTS = ("omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_integrated",
+           "scattering_angle_enclosure", "contact_point", "galois_group")
 FIGURES = {  # figure -> effect it draws
     "omega_plane": "omega",
     "gamma_components": "gamma",
@@ -63,7 +68,7 @@ FIGURES = {  # figure -> effect it draws
     "sleigh_path": "contact_point",
 }
 SLEIGH_EFFECTS = ("omega", "contact_point")
-SWEEP_EFFECTS = ("scattering_angle", "scattering_angle_enclosure", "galois_group")
+SWEEP_EFFECTS = ("scattering_angle", "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group")
 SWEEP_FIGURES = ("map", "histogram")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "LSODA")
 METHODS = ("taylor", *(f"scipy:{m}" for m in SCIPY_METHODS))

@@ -1,22 +1,27 @@
 """Sweep scenes: the scattering angle (paper section 5.1, Theorem 5.2, eq:o12) over many bodies and energies.
 
 A sweep scene (:mod:`suslov.simulator.sweep_spec`) names points; each point is a body.  The method per
-point comes from the planner's provider table (:func:`suslov.simulator.planner.point_steps`): the closed
-form of Theorem 5.2 when I13 = 0, Taylor integration of the ss solution otherwise, the validated
-ball integration for ``scattering_angle_enclosure``.  Points are cut into chunks and run by
+point comes from the planner's provider table (:func:`suslov.simulator.planner.point_steps`): for
+``scattering_angle`` the closed form of Theorem 5.2 when I13 = 0 and the closed form of every body
+(``general_scattering_angle``) otherwise, never an integration; for ``scattering_angle_integrated``
+(the cross-check) Taylor integration of the ss solution (SciPy on request) at every point; for
+``scattering_angle_enclosure`` a ball of the closed form of every body.  Points are cut into chunks and run by
 :mod:`suslov.executor` (local processes or Dask); finished chunks are kept beside the output
 directory (``.NAME.chunks``) until the whole sweep succeeded, so an interrupted sweep resumes.
 
 The scattering angle of a general body (I13 != 0) is the spatial angle between the limit
 positions of the body axis ``n = u/|u|`` about which the body rotates at t -> -oo and t -> +oo:
 with gamma the ss solution (gamma(-oo) = -n), ``cos(Delta psi) = -<gamma(+oo), n>``.  For I13 = 0
-this is Theorem 5.2's angle, ``scattering_angle(p, d)`` (checked in tests/test_sweep.py).
+this is Theorem 5.2's angle, ``scattering_angle(p, d)``; for every body the closed form and the
+integration agree (both checked in tests/test_sweep.py).
 
 Output (written atomically into ``--out``): ``results.csv`` (``results.parquet`` too when pyarrow
 is importable) with one row per point in point order: the input columns, one column per scalar
 effect, ``<effect>_error`` (the error estimate or the ball's radius), ``<effect>_method``,
 ``energy_spread`` (largest difference of the angle between the energies of one body, when the
-sweep lists several energies) and ``error`` (why a point was refused; empty otherwise); the
+sweep lists several energies: of ``scattering_angle_integrated`` when the sweep asks for it, else of
+``scattering_angle``, whose closed forms never see the energy, so that spread is 0) and ``error``
+(why a point was refused; empty otherwise); the
 figures; ``results.json`` (summary) and ``report.md``.
 """
 from __future__ import annotations
@@ -35,15 +40,17 @@ import numpy as np
 from suslov import executor
 from suslov.loader import gf
 from suslov.simulator.body import make_body
-from suslov.simulator.engine import numeric_angle
+from suslov.simulator.engine import general_angle, numeric_angle
 from suslov.simulator.planner import point_steps
-from suslov.simulator.sweep_outputs import columns_of, write_sweep_outputs
+from suslov.simulator.sweep_outputs import columns_of, spread_source, write_sweep_outputs
 from suslov.simulator.sweep_spec import tensor_of
 
 SAMPLE_FOR_EXPLAIN = 20_000
-# seconds per point and step, measured by bench/bench_simulator.py on the 2-core machine (rounded up)
-COST = {"galois_monodromy": 0.3, "angle_closed_form": 3e-5, "angle_integrate:taylor": 5e-4, "angle_integrate:scipy": 2.0,
-        "angle_enclosure": 0.3, "refused": 2e-5}
+# seconds per point and step, measured by bench/bench_simulator.py on the 2-core machine (rounded up);
+# angle_general_closed_form: one scalar call per point, 150 us measured under load 2 (Theorem 5.2's: 48 us),
+# 292 us in bench/results/general_angle.md (its 1 us per body is the vectorised call, not the sweep's)
+COST = {"galois_monodromy": 0.3, "angle_closed_form": 3e-5, "angle_general_closed_form": 2e-4,
+        "angle_integrate:taylor": 5e-4, "angle_integrate:scipy": 2.0, "angle_enclosure": 0.3, "refused": 2e-5}
 WORKER_START = 1.0   # seconds to start a worker process (imports 0.4 s, Taylor compilation 0.5 s)
 ENCLOSURE_DIGITS = 15
 GALOIS_DIGITS = 20
@@ -136,13 +143,24 @@ def plan_sweep(scene, workers: int | None = None, scheduler: str | None = None) 
     return SweepPlan(scene, classes, sampled, chunk, math.ceil(n / chunk), workers, scheduler)
 
 
-def _angle(body, steps, method, point):
+def _angle(body, steps, point):
+    """(angle, error, method) by the closed form the effect graph chose: Theorem 5.2 or that of every body."""
     if "angle_closed_form" in steps:
         # a (p, d) point is evaluated at its own p, d (the body's are recomputed from a tensor, to rounding)
         p, d = (point["p"], point["d"]) if "p" in point else (body.p, body.d)
         return float(gf.scattering_angle(p, d)), 1e-13 * math.pi, "closed form (Theorem 5.2)"
-    angle, error, _ = numeric_angle(SimpleNamespace(method=method), body)   # the one-body scenes' choice
+    angle, bound = general_angle(body)
+    return angle, bound, "closed form of every body (Gauss's equation in s = sinh t)"
+
+
+def _integrated(body, method):
+    """(angle, error estimate, method) by integrating ss: the cross-check, the one-body scenes' integrator."""
+    angle, error, _ = numeric_angle(SimpleNamespace(method=method), body)
     return angle, error, ("heyoka Taylor" if method == "taylor" else "SciPy DOP853") + " (ss, lam t = 40)"
+
+
+def _columns(effect: str, value, error, method) -> dict:
+    return {effect: value, f"{effect}_error": error, f"{effect}_method": method}
 
 
 def evaluate_point(point: dict, options: dict) -> dict:
@@ -155,8 +173,9 @@ def evaluate_point(point: dict, options: dict) -> dict:
     row: dict = {}
     try:
         if "scattering_angle" in options["effects"]:
-            angle, error, how = _angle(body, steps, options["method"], point)
-            row |= {"scattering_angle": angle, "scattering_angle_error": error, "scattering_angle_method": how}
+            row |= _columns("scattering_angle", *_angle(body, steps, point))
+        if "angle_integrate" in steps:
+            row |= _columns("scattering_angle_integrated", *_integrated(body, options["method"]))
         if "galois_monodromy" in steps:
             from suslov.validated import galois_group   # exact: Kimura's theorem on the body's Gauss equation
             result = galois_group(*body.entries)
@@ -228,7 +247,7 @@ def assemble(scene, rows: list) -> dict:
         empty = "" if name.endswith("_method") or name == "error" else math.nan
         table[name] = [r.get(name, empty) for r in rows]
     if "energy_spread" in columns_of(scene):
-        angles = np.array(table["scattering_angle"], dtype=float).reshape(-1, sw.energies)
+        angles = np.array(table[spread_source(scene.effects)], dtype=float).reshape(-1, sw.energies)
         spread = angles.max(axis=1) - angles.min(axis=1)   # NaN when any energy of the body failed
         table["energy_spread"] = np.repeat(spread, sw.energies).tolist()
         table = {c: table[c] for c in columns_of(scene)}

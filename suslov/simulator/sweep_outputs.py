@@ -16,8 +16,10 @@ import numpy as np
 
 from suslov.simulator.outputs import REPORT, staged
 
-SCALARS = ("scattering_angle", "scattering_angle_enclosure", "galois_group", "energy_spread")
-LABELS = {"scattering_angle": r"$\Delta\psi$ (rad)", "scattering_angle_enclosure": r"$\Delta\psi$ ball midpoint (rad)",
+SCALARS = ("scattering_angle", "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group",
+           "energy_spread")
+LABELS = {"scattering_angle": r"$\Delta\psi$ (rad)", "scattering_angle_integrated": r"$\Delta\psi$ integrated (rad)",
+          "scattering_angle_enclosure": r"$\Delta\psi$ ball midpoint (rad)",
           "energy_spread": r"energy spread $\Delta\psi_{\max} - \Delta\psi_{\min}$ (rad)",
           "galois_group": "Galois group (0: reducible, Liouvillian; 1: SO(3,C), not; white: unknown)"}
 SPREAD_FLOOR = 1e-17   # a spread of exactly 0 (equal in every bit) is drawn at this value on the log scale
@@ -156,12 +158,18 @@ def _report(scene, plan, files, seconds, computed, stats) -> str:
     return "\n".join(lines) + "\n"
 
 
+def spread_source(effects) -> str | None:
+    """The angle whose energy spread is reported: the integrated one when asked for (the closed forms
+    never see the energy: their spread is 0 by construction), else the closed form; None without an angle."""
+    return next((e for e in ("scattering_angle_integrated", "scattering_angle") if e in effects), None)
+
+
 def columns_of(scene) -> list[str]:
     """The table's columns: the inputs, three per effect (value, _error, _method), energy_spread, error."""
     names = list(scene.sweep.columns)
     for effect in scene.effects:
         names += [effect, f"{effect}_error", f"{effect}_method"]
-    if scene.sweep.energies > 1 and "scattering_angle" in scene.effects:
+    if scene.sweep.energies > 1 and spread_source(scene.effects):
         names.append("energy_spread")
     return names + ["error"]
 
