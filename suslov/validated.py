@@ -1,8 +1,10 @@
-"""Rigorous enclosures of the scattering angle of any body (paper section 5.1, Theorem 5.2, eq:o12).
+"""Rigorous enclosures, monodromy and the Galois group of any body (section 5.1, Theorem 5.2, eq:o12, Conclusion).
 
 The angle between the limit rotation axes of the ss solution (``gamma(-oo) = -n``,
 ``Delta psi = arccos(-<gamma(+oo), n>)``), as a python-flint ball, for any inertia tensor
-with I12 = 0 and a = e3 -- I13 != 0 included, where no closed form exists.  The coefficients
+with I12 = 0 and a = e3 -- I13 != 0 included.  Two routes: the certified closed form of every body
+(``method="closed_form"``, the default: Gauss's equation in s = sinh t, ``derivations/sections/general_angle.py``)
+and, as the independent check, validated integration (``method="integration"``).  The coefficients
 u, v of ``omega(s) = u tanh s + v sech s`` come from the generated module's *emitted* closed form
 ``_omega_general`` (certified, model:011), evaluated with probe values of (tanh, sech): exact,
 because the emitted function is linear in them.  The enclosure itself is
@@ -118,8 +120,8 @@ def hypergeometric_form(I11, I22, I13, I23, prec: int | None = None) -> Hypergeo
 def galois_group(I11, I22, I13, I23) -> GaloisGroup:
     """The differential Galois group of the Poisson equations of a body, decided exactly (Kimura's theorem).
 
-    ``group``: "reducible" (the torus SO(2,C) of rotations about u/|u|; Liouvillian) exactly when
-    u.v = 0 and w_-^2 = -P^2 with P odd (I13 = 0 with odd p, or I23 = 0 with odd p by eq:lina), else
+    ``group``: "reducible" (the torus SO(2,C) of rotations about ``u/|u|``; Liouvillian) exactly when
+    ``u.v = 0`` and ``w_-^2 = -P^2`` with P odd (I13 = 0 with odd p, or I23 = 0 with odd p by eq:lina), else
     "SO(3,C)"; ``method`` says "exact".  Entries are read exactly (decimal strings and floats as the
     numbers they are).  The equilibrium I13 = I23 = 0 and I11 <= 0 or I22 <= 0 raise ``ValueError``.
     The theorem and its proof: :mod:`suslov.kernel.kimura`.

@@ -179,10 +179,13 @@ def test_near_the_equilibrium_the_radius_is_still_as_asked_and_the_verdict_decid
     assert m.verdict == "SO(3,C)"
 
 
-def test_too_close_to_the_equilibrium_is_unknown_with_the_digits_it_would_need():
+def test_too_close_to_the_equilibrium_the_balls_say_unknown_and_the_exact_decision_decides():
+    """The balls are not integrated (the digits it would need are said); the verdict is Kimura's, exactly."""
     m = monodromy("2", "1", "1/1000", "1/1000", digits=20)
-    assert m.verdict == "unknown" and m.liouvillian is None and m.matrices == {} and m.radius == math.inf
+    assert m.matrices == {} and m.radius == math.inf
     assert "working digits" in m.certificates[0][0] and m.certificates[0][1] == "unknown"
+    assert m.verdict == "SO(3,C)" and m.liouvillian is False
+    assert m.certificates[-1][1] == "pass" and "exactly" in m.certificates[-1][0]
 
 
 def test_the_mirror_axis_i23_zero_through_eq_lina():
@@ -194,9 +197,10 @@ def test_the_mirror_axis_i23_zero_through_eq_lina():
     assert even.verdict == "SO(3,C)" and (even.matrices["x=i"].trace() - 3).contains(0)
 
 
-def test_odd_p_beyond_the_certified_range_is_unknown_not_reducible(monkeypatch):
+def test_odd_p_beyond_the_certified_range_balls_undecided_exact_decision_reducible(monkeypatch):
     """The balls cannot prove M(+-i) = I; the exact no-logarithm certificate exists per p, up to the
-    loaded formulas' PMAX.  With a module certified only up to p = 1, p = 3 is undecided."""
+    loaded formulas' PMAX.  With a module certified only up to p = 1, the balls leave p = 3 undecided;
+    Kimura's theorem needs no per-p certificate and decides it (reducible)."""
     import suslov.validated as validated
 
     real = validated.gf
@@ -209,7 +213,8 @@ def test_odd_p_beyond_the_certified_range_is_unknown_not_reducible(monkeypatch):
 
     monkeypatch.setattr(validated, "gf", Formulas())
     m = monodromy(2, 1, 0, "-1/3", digits=20)
-    assert m.verdict == "unknown" and m.liouvillian is None
+    assert m.verdict == "reducible" and m.liouvillian is True
+    assert any(outcome == "pass" and "exactly" in claim for claim, outcome, _ in m.certificates)
     assert _contains(m.matrices["x=i"], I3)                # consistent with p = 3, but not a proof
     assert any(outcome == "unknown" and "beyond the certified range p <= 1" in detail
                for _, outcome, detail in m.certificates)

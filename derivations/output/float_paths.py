@@ -265,6 +265,33 @@ def check_scattering_angle(log: CertificateLog, module) -> Certificate:
                    worst)
 
 
+def check_general_scattering_angle(log: CertificateLog, module) -> list:
+    """The closed-form angle of every body: float64 against the mpmath twin, absolute 1e-13 (1 + |Y|)."""
+    if not hasattr(module, "general_scattering_angle"):   # a tree from before the closed form
+        return []
+    from suslov.kernel.contexts import MP
+
+    rng = np.random.default_rng(3700)
+    bodies = [(2.0, 1.0, 0.0, -1.0), (2.0, 1.0, 0.0, -1 / 3), (2.0, 1.0, 1e-14, -1 / 3), (1.25, 1.0, 0.3, -0.5),
+              (1.0, 2.0, 0.3, 0.2), (1.0, 1.0, 0.5, 0.5), (2.0, 1.0, 1e-6, -1e-6), (2.0, 1.0, 1e-3, 2e-3),
+              (3.0, 0.2, 0.9, -0.01), (0.2, 3.0, -0.01, 0.9), (1e150, 5e149, 3e149, -4e149)]
+    bodies += [tuple(float(v) for v in row) for row in zip(rng.uniform(0.2, 3, 24), rng.uniform(0.2, 3, 24),
+                                                             rng.uniform(-1, 1, 24), rng.uniform(-1, 1, 24))]
+    worst = 0.0
+    with stopwatch() as elapsed:
+        values = module.general_scattering_angle(*(np.array(column) for column in zip(*bodies)))
+        for value, body in zip(values, bodies):
+            exact = module.general_scattering_angle_mp(*body, dps=DPS)
+            with mpmath.workdps(DPS):
+                _, a, b, _ = module._gauss_invariants(MP, *(mpmath.mpf(x) for x in body))
+                Y = abs(mpmath.sqrt(mpmath.mpc(a, b)).imag)
+            worst = max(worst, _ratio(abs(value - exact), 1e-13 * (1 + Y)))
+    return [_record(log, "general_scattering_angle: float64 within absolute 1e-13 (1 + |Im w_-|) of "
+                    "general_scattering_angle_mp (odd p, I13 next to 0, I11 < I22, I11 = I22, next to the "
+                    "equilibrium, a tensor of size 1e150, 24 seeded bodies)", worst <= 1, elapsed[0], len(bodies),
+                    worst)]
+
+
 def check_special_case_chain(log: CertificateLog, module) -> Certificate:
     rng = np.random.default_rng(1600)
     worst, points = 0.0, 0
@@ -368,11 +395,19 @@ def check_input_validation(log: CertificateLog, module) -> Certificate:
                   ("gamma_basis_mp", lambda b=bad: module.gamma_basis_mp(0.3, 1, 0.5, dps=b)),
                   ("scattering_angle_mp", lambda b=bad: module.scattering_angle_mp(2.5, 0.7, dps=b)),
                   ("scattering_angle_ball", lambda b=bad: module.scattering_angle_ball(2, 1, prec=b))]
+        if hasattr(module, "general_scattering_angle"):
+            calls += [("general_scattering_angle_mp",
+                       lambda b=bad: module.general_scattering_angle_mp(2, 1, 0.3, -0.5, dps=b)),
+                      ("general_scattering_angle_ball",
+                       lambda b=bad: module.general_scattering_angle_ball(2, 1, 0.3, -0.5, prec=b))]
     z = np.array([0.5 + 1e-9j])
     calls += [("omega", lambda: module.omega(z, 3, 0.5)), ("gamma_basis", lambda: module.gamma_basis(z, 1, 0.5)),
               ("scattering_angle", lambda: module.scattering_angle(z, 0.7)),
               ("first_integral", lambda: module.first_integral(1, 0.5, z, 1.0, 0.6, 0.8, 0.0)),
               ("omega_general", lambda: module.omega_general(z, 2, 1, 0.3, -0.5))]
+    if hasattr(module, "general_scattering_angle"):
+        calls += [("general_scattering_angle", lambda: module.general_scattering_angle(2, 1, z, -0.5)),
+                  ("general_scattering_angle (equilibrium)", lambda: module.general_scattering_angle(2, 1, 0, 0))]
     accepted = []
     with stopwatch() as elapsed:
         for name, call in calls:
@@ -426,7 +461,7 @@ def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list
     in ``skip`` (bases certified in workers: :func:`derivations.output.roundtrip.per_p_checks` runs these
     same checks for them in workers)."""
     certs = [check_omega(log, module), check_omega_general(log, module), check_scattering_angle(log, module),
-             check_special_case_chain(log, module), check_meromorphy(log, module),
+             *check_general_scattering_angle(log, module), check_special_case_chain(log, module), check_meromorphy(log, module),
              check_kovalevskaya_exponents(log, module, build.results["kovalevskaya"].exports["matrix"]),
              check_meromorphy_cases(log, module), check_input_validation(log, module),
              check_load_certificates(log, module, build)]

@@ -99,6 +99,20 @@ INVARIANTS = {"U2": I11**2 * I22**2 * (I13**2 + I23**2) / DEN**2,
               "cross": -I11 * I22 * r / DEN}
 
 
+def invariants_emitted(certificates: tuple = ()) -> Emitted:
+    """The emitted ``_gauss_invariants(ctx, I11, I22, I13, I23)`` -> (U^2, a, b, c2): ``w_-^2 = a + i b``,
+    ``b = -2 u.v``, ``c2 = (u x v)_3^2``, r = sqrt(I11) sqrt(I22).  Its code does not depend on the
+    certificate keys (only its docstring names them), so the ball checks of
+    :mod:`derivations.sections.general_angle` can start from it before this derivation runs."""
+    i11, i22, i13, i23 = sp.symbols("I11 I22 I13 I23", positive=True)
+    sub = {I11: i11, I22: i22, I13: i13, I23: i23}
+    den = DEN.subs(sub)
+    return Emitted("gauss_invariants", (i11, i22, i13, i23), ((r, sp.sqrt(i11) * sp.sqrt(i22)),),
+                   (INVARIANTS["U2"].subs(sub), INVARIANTS["a"].subs(sub), -2 * INVARIANTS["uv"].subs(sub),
+                    i11**3 * i22**3 / den**2), certificates,
+                   "(U^2, a, b, c2) of a body: w_-^2 = a + i b = (u - i v).(u - i v), U^2 = u.u, c2 = (u x v)_3^2.")
+
+
 def run(log: CertificateLog, options, model_result) -> DerivationResult:
     result = DerivationResult(NAME)
     u3, v3 = list(u_[:2]) + [0], list(v_[:2]) + [0]
@@ -214,19 +228,16 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                    r"U^2=\frac{I_{11}^2I_{22}^2(I_{13}^2+I_{23}^2)}{D^2},\ w_-^2=-\overline{\Lambda^2}"
                    r"=\frac{I_{11}I_{22}(I_{11}-I_{22})\big(I_{13}^2I_{22}-I_{11}I_{23}^2-2i\,r\,I_{13}I_{23}\big)}{D^2},"
                    r"\quad D=I_{11}I_{23}^2+I_{13}^2I_{22},\ r=\sqrt{I_{11}I_{22}}", c_inv, c_lambda)
+    result.formula("gauss_exponents", "derived", "Table of exponents (spinor lift; Gauss's F)",
+                   [r"s=i\ \mapsto\ z=0:\quad \pm\tfrac{\kappa}2;\quad F:\ 0,\ 1-C=-\kappa",
+                    r"s=-i\ \mapsto\ z=1:\quad \pm\tfrac{\mu}2;\quad F:\ 0,\ C-A-B=-\mu",
+                    r"s=\infty\ \mapsto\ z=\infty:\quad \pm\tfrac{iU}2;\quad F:\ A,\ B\quad(A-B=1+iU)",
+                    r"\kappa=\tfrac i2w_-,\ \mu=\tfrac i2w_+=-\bar\kappa,\ U=|u|;\quad I_{13}=0:\ "
+                    r"\kappa=\mu=\mp\tfrac p2,\ U=\tfrac{|p|}d"], c_half, c_exponents, c_lambda)
     result.notes.append("Exponent differences: kappa = (i/2) w_- at s = i (z = 0), mu = (i/2) w_+ at s = -i (z = 1), "
                         "i U at s = oo (z = oo); for real u, v, w_+ = conj(w_-), so mu = -conj(kappa).")
 
-    # the emitted invariants: r = sqrt(I11) sqrt(I22); a = |u|^2 - |v|^2, b = -2 u.v (w_-^2 = a + i b),
-    # c2 = (u x v)_3^2 = U^2 v2^2
-    i11, i22, i13, i23 = sp.symbols("I11 I22 I13 I23", positive=True)
-    sub = {I11: i11, I22: i22, I13: i13, I23: i23}
-    den = DEN.subs(sub)
-    emit = [Emitted("gauss_invariants", (i11, i22, i13, i23), ((r, sp.sqrt(i11) * sp.sqrt(i22)),),
-                    (INVARIANTS["U2"].subs(sub), INVARIANTS["a"].subs(sub), -2 * INVARIANTS["uv"].subs(sub),
-                     i11**3 * i22**3 / den**2),
-                    (c_inv.key, c_lambda.key),
-                    "(U^2, a, b, c2) of a body: w_-^2 = a + i b = (u - i v).(u - i v), U^2 = u.u, c2 = (u x v)_3^2.")]
+    emit = [invariants_emitted((c_inv.key, c_lambda.key))]
     result.exports.update(emit=emit, certificates={"gauss": c_gauss.key, "invariants": c_inv.key,
                                                    "lambda": c_lambda.key, "lift": c_lift.key})
     return result

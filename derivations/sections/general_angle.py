@@ -47,7 +47,7 @@ from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
 from derivations.core.symbols import I11, I13, I22, I23
 from derivations.sections import general_angle_balls
-from derivations.sections.gauss import INVARIANTS, I_EXT, j
+from derivations.sections.gauss import INVARIANTS, I_EXT, invariants_emitted, j
 
 NAME = "general_angle"
 TITLE = "The scattering angle of every body in closed form"
@@ -72,12 +72,22 @@ def seeded_bodies(count: int = SEEDED, seed: int = 37) -> list[tuple]:
     return bodies
 
 
+def ball_jobs() -> list:
+    """(body, kind, digits, code of _gauss_invariants) for every ball check (deterministic)."""
+    source = invariants_emitted().source()
+    bodies = seeded_bodies()
+    return ([(b, "trace", TRACE_DIGITS, source) for b in bodies] + [(b, "angle", ANGLE_DIGITS, source) for b in bodies]
+            + [(b, "angle", DEEP_DIGITS, source) for b in bodies[:DEEP]])
+
+
 def _run_check(item: tuple) -> dict:
     """Worker entry: (body, kind, digits, source) -> plain data."""
     body, kind, digits, source = item
     check = general_angle_balls.angle_check if kind == "angle" else general_angle_balls.trace_check
     return check((body, source, digits))
 
+
+PREFETCH = (("general angle: ball checks", ball_jobs(), _run_check),)
 
 Eh, Eg, sy, cy = sp.symbols("Eh Eg sy cy", positive=True)   # e^h, e^g, |sin(pi Y/2)|, |cos(pi Y/2)|
 h, g, ss, cc = sp.symbols("h g s c", nonnegative=True)
@@ -99,8 +109,10 @@ def _stable_parts(E_h, E_g, s_, c_):
 
 def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     result = DerivationResult(NAME)
-    emitted_invariants = gauss_result.exports["emit"][0]
-    source = emitted_invariants.source()
+    # the ball checks need no other result: started with the build in the worker processes (PREFETCH);
+    # they evaluate the code of the emitted invariants, which gauss certifies
+    if gauss_result.exports["emit"][0].source().split('"""')[-1] != ball_jobs()[0][3].split('"""')[-1]:
+        raise RuntimeError("the ball checks' code of _gauss_invariants differs from the certified emitted one")
 
     # 1. connection: diagonal of M_i from its trace and tr(M_oo M_i); the H-coefficient after the loop
     a_sol = (taup - tau / m) / (m - 1 / m)
@@ -158,9 +170,8 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
 
     # 5. balls: closed form against the ss enclosure and against the complex-path monodromy
     bodies = seeded_bodies()
-    jobs = ([(b, "trace", TRACE_DIGITS, source) for b in bodies] + [(b, "angle", ANGLE_DIGITS, source) for b in bodies]
-            + [(b, "angle", DEEP_DIGITS, source) for b in bodies[:DEEP]])
-    outcomes = log.map_per_p("general angle: ball checks", jobs, _run_check)
+    jobs = PREFETCH[0][1]
+    outcomes = log.map_per_p(*PREFETCH[0])
     traces = [o for o, job in zip(outcomes, jobs) if job[1] == "trace"]
     angles = [o for o, job in zip(outcomes, jobs) if job[1] == "angle" and job[2] == ANGLE_DIGITS]
     deep = [o for o, job in zip(outcomes, jobs) if job[1] == "angle" and job[2] == DEEP_DIGITS]

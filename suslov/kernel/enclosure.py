@@ -2,7 +2,8 @@
 
 Paper: eq:whole (``gamma' = gamma x omega``), eq:o12 (the general solution omega(t) of any body
 with I12 = 0, a = e3), the boundary condition ``ss`` and the angle of Theorem 5.2 (section 5.1),
-here for *any* body (I13 != 0 included, where no closed form exists).  No SymPy and no
+here for *any* body (I13 != 0 included): the independent route beside the closed form of every body
+(``derivations/sections/general_angle.py`` checks one against the other).  No SymPy and no
 ``generated`` import: the build (``derivations/sections/scattering.py``) and the run time (``suslov.validated``)
 both call :func:`ss_angle_enclosure` with the coefficients u, v of omega.  Everything is python-flint
 ball arithmetic (``arb``); every number returned is an interval that contains the exact value.
