@@ -225,17 +225,16 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                    r"C=1+\kappa",
                    c_scalar, c_bc, c_gauss, c_points, c_exponents)
     result.formula("gauss_invariants", "eq:o12", "The exponents of a body",
-                   r"U^2=\frac{I_{11}^2I_{22}^2(I_{13}^2+I_{23}^2)}{D^2},\ w_-^2=-\overline{\Lambda^2}"
-                   r"=\frac{I_{11}I_{22}(I_{11}-I_{22})\big(I_{13}^2I_{22}-I_{11}I_{23}^2-2i\,r\,I_{13}I_{23}\big)}{D^2},"
-                   r"\quad D=I_{11}I_{23}^2+I_{13}^2I_{22},\ r=\sqrt{I_{11}I_{22}}", c_inv, c_lambda)
+                   [r"U^2=\frac{I_{11}^2I_{22}^2(I_{13}^2+I_{23}^2)}{D^2},\quad D=I_{11}I_{23}^2+I_{13}^2I_{22},"
+                    r"\quad r=\sqrt{I_{11}I_{22}}",
+                    r"w_-^2=-\overline{\Lambda^2}=\frac{I_{11}I_{22}(I_{11}-I_{22})\big(I_{13}^2I_{22}-I_{11}I_{23}^2"
+                    r"-2i\,r\,I_{13}I_{23}\big)}{D^2}"], c_inv, c_lambda)
     result.formula("gauss_exponents", "derived", "Table of exponents (spinor lift; Gauss's F)",
                    [r"s=i\ \mapsto\ z=0:\quad \pm\tfrac{\kappa}2;\quad F:\ 0,\ 1-C=-\kappa",
                     r"s=-i\ \mapsto\ z=1:\quad \pm\tfrac{\mu}2;\quad F:\ 0,\ C-A-B=-\mu",
                     r"s=\infty\ \mapsto\ z=\infty:\quad \pm\tfrac{iU}2;\quad F:\ A,\ B\quad(A-B=1+iU)",
                     r"\kappa=\tfrac i2w_-,\ \mu=\tfrac i2w_+=-\bar\kappa,\ U=|u|;\quad I_{13}=0:\ "
                     r"\kappa=\mu=\mp\tfrac p2,\ U=\tfrac{|p|}d"], c_half, c_exponents, c_lambda)
-    result.notes.append("Exponent differences: kappa = (i/2) w_- at s = i (z = 0), mu = (i/2) w_+ at s = -i (z = 1), "
-                        "i U at s = oo (z = oo); for real u, v, w_+ = conj(w_-), so mu = -conj(kappa).")
 
     emit = [invariants_emitted((c_inv.key, c_lambda.key))]
     result.exports.update(emit=emit, certificates={"gauss": c_gauss.key, "invariants": c_inv.key,

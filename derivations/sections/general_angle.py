@@ -54,7 +54,7 @@ TITLE = "The scattering angle of every body in closed form"
 REQUIRES = ("gauss",)
 
 TRACE_DIGITS = 100       # complex-path monodromy traces, every seeded body
-ANGLE_DIGITS = 30        # ss enclosure, every seeded body
+ANGLE_DIGITS = 20        # ss enclosure, every seeded body
 DEEP_DIGITS = 100        # ss enclosure, the first DEEP bodies
 DEEP = 2
 SEEDED = 20

@@ -97,7 +97,7 @@ def trace_check(item: tuple) -> dict:
             guard = guard_digits(residues(u, v))
             ctx.prec = int(3.33 * (digits + guard)) + 64
             u, v = omega_coefficients(*body)
-            mono = compute_monodromy(u, v, digits, guard)
+            mono = compute_monodromy(u, v, digits, guard, with_infinity=False)
             ctx.prec = int(3.33 * (digits + guard)) + 64
             c = closed_form(source, body)
             tau, tau2, m = c["tau"], c["tau_minus"], c["m"]

@@ -64,22 +64,24 @@ def run(log: CertificateLog, options, gauss_result, fuchsian_result) -> Derivati
     result.formula("general_galois", "Conclusion", "Galois group of every body (theorem)",
                    [r"\text{Liouvillian}\iff I_{13}I_{23}(I_{11}-I_{22})=0\ \text{and}\ w_-^2=-P^2,\ P\ \text{odd}"
                     r"\quad(\Lambda=P\ \text{odd})",
-                    r"\mathrm{Gal}=SO(2,\mathbb C)\ \text{(reducible)}\ \text{then},\ \text{else}\ SO(3,\mathbb C)"
-                    r"\quad(\text{over }\mathbb C(e^t);\ \text{over }\mathbb C(\sinh t)\text{: imprimitive, resp. }"
-                    r"SL(2,\mathbb C)\text{ for the spinor lift})"], c_conj, c_sum, c_half, c_agree)
-    result.notes.append(
-        "Proof. The spinor lift is gauge-equivalent over C(sinh t) to Gauss's equation with exponent differences "
-        f"kappa, mu and 1 + iU (certificates {keys['lift']}, {keys['gauss']}); Liouvillian solutions of the Poisson "
-        "equations and of the lift come together (the Poisson equations are its adjoint, a finite quotient). By "
-        "Kimura's theorem they exist iff (i) some +-kappa +- mu +- (1 + iU) is an odd integer or (ii) the exponent "
-        "differences are on Schwarz's list. (i): kappa + mu = iX is imaginary and kappa - mu = -Y real, so the "
-        "candidates have imaginary parts X +- U or +-U; U > 0, and X = U needs (u x v)_3 = 0, which no body has. "
-        "(ii): all families but the first need three real rationals, and 1 + iU is not real; the first needs kappa "
-        "and mu half-odd, i.e. w_-^2 = -(odd)^2, which forces u.v = 0 (w_-^2 real). Then the local monodromies of "
-        "the lift at s = +-i have trace 0 and the one at infinity infinite order: over C(sinh t) the lift's group is "
-        "the normaliser of a torus (imprimitive). In x = e^t the points s = +-i are ramified (s - i ~ (x - i)^2), "
-        "the loops about x = +-i give M^2 = -I, and the Poisson group is the closure of the cyclic group of the "
-        "loop about x = 0: the torus of rotations about u/|u|. Otherwise the identity component is not solvable: "
-        "SL(2, C) for the lift, SO(3, C) for the Poisson equations.")
+                    r"\mathrm{Gal}=SO(2,\mathbb C)\ \text{(reducible) then, else}\ SO(3,\mathbb C)\quad"
+                    r"(\text{over }\mathbb C(e^t))",
+                    r"\text{spinor lift over }\mathbb C(\sinh t)\text{: imprimitive, resp. }SL(2,\mathbb C)"], c_conj, c_sum, c_half, c_agree)
+    result.formula("general_galois_proof", "Conclusion", "Proof (Kimura's theorem on Gauss's equation)",
+                   r"\parbox{0.94\linewidth}{\small The spinor lift is gauge-equivalent over $\mathbb C(\sinh t)$ to "
+                   r"Gauss's equation with exponent differences $\kappa$, $\mu$, $1+iU$; the Poisson equations are its "
+                   r"adjoint, so both have Liouvillian solutions or neither. By Kimura's theorem they exist iff (i) some "
+                   r"$\pm\kappa\pm\mu\pm(1+iU)$ is an odd integer or (ii) the exponent differences are on Schwarz's "
+                   r"list. (i): $\kappa+\mu=iX$ is imaginary and $\kappa-\mu=-Y$ real ($w_-=X+iY$), so the candidates "
+                   r"have imaginary parts $X\pm U$ or $\pm U$; $U>0$, and $X=U$ needs $(u\times v)_3=0$, which no body "
+                   r"has. (ii): every family but the first needs three real rationals, and $1+iU$ is not real; the first "
+                   r"needs $\kappa,\mu$ half-odd, that is $w_-^2=-(2l+1)^2$, which forces $u\cdot v=0$. Then the local "
+                   r"monodromies of the lift at $s=\pm i$ have trace $0$ and the one at $s=\infty$ infinite order: over "
+                   r"$\mathbb C(\sinh t)$ the lift's group is the normaliser of a torus (imprimitive). In $x=e^t$ the "
+                   r"points $s=\pm i$ are ramified ($s-i\sim(x-i)^2$), the loops about $x=\pm i$ give $M^2=-I$, and the "
+                   r"Poisson group is the closure of the cyclic group of the loop about $x=0$: the torus of rotations "
+                   r"about $u/|u|$. Otherwise the identity component is not solvable: $SL(2,\mathbb C)$ for the lift, "
+                   r"$SO(3,\mathbb C)$ for the Poisson equations.}", c_conj, c_sum, c_half,
+                   *(c for c in (log.certificates) if c.key in (keys["lift"], keys["gauss"])))
     result.exports.update(certificates={"agree": c_agree.key, "conj": c_conj.key})
     return result

@@ -120,9 +120,11 @@ def _exponent(w_residue: acb_mat) -> acb:
     return acb(0, 1) * (w1 * w1 + w2 * w2 + w3 * w3).sqrt()
 
 
-def compute_monodromy(u, v, digits: int = 30, guard: int | None = None) -> Monodromy:
+def compute_monodromy(u, v, digits: int = 30, guard: int | None = None, with_infinity: bool = True) -> Monodromy:
     """The four monodromy matrices for omega = u tanh t + v sech t, each entry a ball of radius about
-    10^-digits (module docstring for the loops).
+    10^-digits (module docstring for the loops); ``with_infinity=False`` skips the loop about all of
+    them (the longest path; the relation of the fundamental group determines it), for callers that
+    need only the three finite loops.
 
     The working precision is ``digits + guard`` decimal digits, ``guard`` by default the estimate
     :func:`suslov.kernel.fuchsian_flow.guard_digits` of what the loops lose (u and v should carry that
@@ -149,6 +151,8 @@ def compute_monodromy(u, v, digits: int = 30, guard: int | None = None) -> Monod
         matrices = {"x=0": path_transfer(R, circle(acb(0), BASE), log10_eps),
                     "x=i": path_transfer(R, _lasso(acb(0, 1)), log10_eps),
                     "x=-i": path_transfer(R, _lasso(acb(0, -1)), log10_eps)}
+        if not with_infinity:
+            return Monodromy(matrices, exponents, digits=digits, guard=guard)
         big = acb(BIG_RADIUS)
         matrices["x=oo"] = path_transfer(R, segment(BASE, big) + circle(acb(0), big)[1:] + segment(big, BASE)[1:],
                                          log10_eps)

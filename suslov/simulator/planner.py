@@ -111,7 +111,8 @@ PROVIDERS = (
     Provider("scattering_angle_enclosure", "angle_enclosure", (), "any Suslov body", _suslov,
              lambda s, b: "the closed form of every body in ball arithmetic (suslov.validated), 1e-20"),
     Provider("galois_group", "galois_monodromy", (), "any Suslov body", _suslov,
-             lambda s, b: "monodromy matrices as balls along complex loops, group decided (suslov.validated.monodromy)"),
+             lambda s, b: "the group decided exactly (Kimura on the body's Gauss equation); one body: also the monodromy "
+                            "balls (suslov.validated.monodromy)"),
 )
 ORDER = ("omega", "contact_point", "gamma", "orientation", "integral_drift", "scattering_angle",
          "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group")

@@ -27,7 +27,7 @@ A scene is declarative: it names the effects wanted, never the method.  Schema::
                                            # scattering_angle_integrated: the same angle by integrating ss
                                            # (the [numerics] integrator family), a cross-check beside it;
                                            # scattering_angle_enclosure: a rigorous ball (python-flint);
-                                           # galois_group: the certified monodromy verdict (suslov.validated.monodromy)
+                                           # galois_group: decided exactly (Kimura; suslov.validated.galois_group)
     figures = ["omega_plane", "gamma_components", "basis_sphere"]
     figures_format = ["png", "pdf"]        # optional, default ["png"]; also "svg"
 
