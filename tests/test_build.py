@@ -148,3 +148,12 @@ def test_costliest_list_shows_each_outcome(default_build):
     refuted = [c for c in default_build.log.certificates if c.expected.value == "fail"]
     assert refuted and all(line.rstrip().endswith(")") for line in costly)
     assert sum("refuted" in line for line in costly) == len(refuted)
+
+
+@pytest.mark.parametrize("pmax", [1, 2])
+def test_smallest_pmax_certifies_the_galois_verdicts(pmax):
+    """--pmax 1 and 2 are allowed: the agreement with the exact Frobenius analysis uses the p it ran
+    (it asked for p = 2 and 3 whatever pmax was, and failed the build)."""
+    build = derive(BuildOptions(pmax=pmax), ["fuchsian"])
+    agree = next(c for c in build.log.certificates if "agree with the exact Frobenius" in c.claim)
+    assert agree.outcome.value == "pass"
