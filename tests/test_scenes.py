@@ -18,7 +18,8 @@ from suslov.simulator.scene import SceneError, load_scene
 from suslov.simulator.sleigh import Sleigh
 from suslov.validated import scattering_angle_enclosure
 
-SCENES = sorted((Path(__file__).resolve().parent.parent / "scenes").glob("*.toml"))
+ROOT = Path(__file__).resolve().parents[1]
+SCENES = sorted((ROOT / "scenes").glob("*.toml"))
 
 
 def write(tmp_path, text, name="scene.toml"):
@@ -290,3 +291,24 @@ def test_report_table_survives_a_pipe_in_a_cell():
     rows = [line for line in _report(run, []).splitlines() if line.startswith("| angle")]
     cells = [c for c in __import__("re").split(r"(?<!\\)\|", rows[0])[1:-1]]
     assert len(cells) == 3 and cells[1].strip() == r"closed form, \|p\| < 1e3"
+
+
+def test_sleigh_scene_refuses_a_suslov_figure_by_name(tmp_path):
+    """A sleigh with figures = ["omega_plane"] ended in KeyError: 'omega_paper' (issue 38): now a SceneError."""
+    text = (ROOT / "scenes" / "fig3_sleigh.toml").read_text().replace('figures = ["sleigh_path"]',
+                                                                        'figures = ["omega_plane"]')
+    with pytest.raises(SceneError, match="effects.figures.*omega_plane.*sleigh_path"):
+        load_scene(write(tmp_path, text))
+
+
+def test_orientation_of_a_general_body_draws_its_basis_sphere(tmp_path):
+    """A general tensor with figures = ["basis_sphere"] ended in KeyError: 't' (issue 38): the integrated
+    orientation now carries its times; the rows stay a rotation."""
+    text = ('name = "b"\n[body]\ninertia = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]\n'
+            '[motion]\ntime = [-5.0, 5.0]\nsamples = 101\n[effects]\ncompute = ["orientation"]\n'
+            'figures = ["basis_sphere"]\nfigures_format = ["png"]\n')
+    out = tmp_path / "out"
+    assert main(["simulate", str(write(tmp_path, text)), "--out", str(out)]) == 0
+    assert (out / "basis_sphere.png").is_file()
+    rows = np.loadtxt(out / "orientation.csv", delimiter=",", skiprows=1)[:, 1:].reshape(-1, 3, 3)
+    assert np.allclose(np.einsum("nij,nkj->nik", rows, rows), np.eye(3), atol=1e-9)

@@ -78,6 +78,7 @@ def step_gamma_integrate(run: Run):
 
 def step_orientation_closed_form(run: Run):
     body, t = run.plan.body, run.plan.scene.times()
+    run.data["t"] = t
     run.data["orientation"] = body.to_scene(_basis_paper(body, t))
     run.results["orientation"] = {"method": "closed form gamma_basis rows (gamma^(1) is the ss solution)"}
 
@@ -86,6 +87,7 @@ def step_orientation_integrate(run: Run):
     scene, body = run.plan.scene, run.plan.body
     t = scene.times()
     sol = solve(scene, body, t, body.to_paper(np.eye(3)))
+    run.data["t"] = t    # orientation.csv and basis_sphere need it also when gamma is not asked for
     run.data["orientation"] = body.to_scene(sol.values)
     run.results["orientation"] = sol.summary() | {"start": "identity at t0"}
 

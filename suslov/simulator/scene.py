@@ -68,6 +68,7 @@ FIGURES = {  # figure -> effect it draws
     "sleigh_path": "contact_point",
 }
 SLEIGH_EFFECTS = ("omega", "contact_point")
+SLEIGH_FIGURES = ("sleigh_path",)   # the other figures draw a Suslov body's omega (paper frame) or gamma
 SWEEP_EFFECTS = ("scattering_angle", "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group")
 SWEEP_FIGURES = ("map", "histogram")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "LSODA")
@@ -229,6 +230,10 @@ def _effects(path, effects, body, sweep):
         if bad:
             raise SceneError(path, "effects", f"{bad[0]!r} is not defined for a sleigh (allowed: "
                              f"{', '.join(SLEIGH_EFFECTS)})")
+        drawn = [f for f in figures if f not in SLEIGH_FIGURES]
+        if drawn:
+            raise SceneError(path, "effects.figures", f"{drawn[0]!r} draws a Suslov body (the paper's omega or "
+                             f"gamma); a sleigh scene draws: {', '.join(SLEIGH_FIGURES)}")
     elif "contact_point" in wanted:
         raise SceneError(path, "effects", "'contact_point' needs a sleigh body (body.kind = \"sleigh\")")
     return compute, figures, formats
