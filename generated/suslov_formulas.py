@@ -74,7 +74,7 @@ def _omega(ctx, t, p, d):
 
     Emitted from the certified expression; certificates: special_case:038, special_case:041.
     """
-    c = ctx.sqrt((d*d) + 1)
+    c = ctx.hypot(d, 1)
     k0 = p/d
     k1 = -c*p/d
     T, S = ctx.tanh_sech(t)

@@ -1,7 +1,8 @@
 """Emit certified expressions as Python functions of a number context (``ctx``).
 
 A closed form is emitted once, as ``def _name(ctx, arg, ...)`` whose elementary functions
-come from ``ctx`` (``ctx.tanh``, ``ctx.sech``, ``ctx.sqrt``, ``ctx.atan2``, ``ctx.exp``, ``ctx.expm1``): the module
+come from ``ctx`` (``ctx.tanh``, ``ctx.sech``, ``ctx.sqrt``, ``ctx.atan2``, ``ctx.exp``, ``ctx.expm1``; ``sqrt(x^2 + 1)`` as ``ctx.hypot(x, 1)``, which
+cannot overflow): the module
 evaluates it with ``suslov.kernel.contexts.FLOAT`` (NumPy) or ``MP`` (mpmath), and the
 build's round trip (:mod:`derivations.output.roundtrip`) evaluates the *same emitted text* with a
 SymPy context and compares it with the certified expression exactly.
@@ -41,6 +42,11 @@ class _ContextPrinter(PythonCodePrinter):
     def _print_Pow(self, expr, rational=False):
         base, exp = expr.as_base_exp()
         if exp == sp.Rational(1, 2):
+            terms = sp.Add.make_args(base)
+            if len(terms) == 2 and sp.Integer(1) in terms:   # sqrt(x^2 + 1): hypot, finite for |x| up to 1e308
+                square = next(t for t in terms if t != 1)
+                if square.is_Pow and square.exp == 2:
+                    return f"ctx.hypot({self._print(square.base)}, 1)"
             return f"ctx.sqrt({self._print(base)})"
         if exp.is_Integer and exp > 0:
             factors = [self.parenthesize(base, sp.printing.precedence.PRECEDENCE["Mul"])] * int(exp)

@@ -68,6 +68,10 @@ class SymbolicContext:
     expm1 = staticmethod(expm1)
 
     @staticmethod
+    def hypot(x, y):
+        return sp.sqrt(x**2 + y**2)
+
+    @staticmethod
     def tanh_sech(t):
         return sp.tanh(t), sp.sech(t)
 

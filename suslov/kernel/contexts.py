@@ -77,6 +77,10 @@ class FloatContext:
     def expm1(x):
         return np.expm1(x)
 
+    @staticmethod
+    def hypot(x, y):
+        return np.hypot(x, y)
+
 
 class MpContext:
     """mpmath building blocks (precision set by the caller's ``workdps``)."""
@@ -92,6 +96,7 @@ class MpContext:
     atan2 = staticmethod(mpmath.atan2)
     exp = staticmethod(mpmath.exp)
     expm1 = staticmethod(mpmath.expm1)
+    hypot = staticmethod(mpmath.hypot)
 
 
 class ArbContext:
@@ -134,6 +139,11 @@ class ArbContext:
     @staticmethod
     def expm1(x):
         return arb(x).expm1()
+
+    @staticmethod
+    def hypot(x, y):
+        x, y = arb(x), arb(y)
+        return (x * x + y * y).sqrt()
 
 
 FLOAT = FloatContext()

@@ -59,6 +59,10 @@ def omega_general(emitted, t, I11, I22, I13, I23, branch) -> tuple[np.ndarray, n
     t = real_array("t", t)
     I11, I22, I13, I23 = tensor_arrays(I11, I22, I13, I23)
     shape = np.broadcast_shapes(t.shape, I11.shape, I22.shape, I13.shape, I23.shape)
+    # the coefficients of omega are homogeneous of degree 0 in the entries: scaled to at most 1 first, a
+    # tensor of size 1e-300 or 1e200 gives the same finite omega (its products overflowed to NaN)
+    size = np.maximum(np.maximum(I11, I22), np.maximum(np.abs(I13), np.abs(I23)))
+    I11, I22, I13, I23 = I11 / size, I22 / size, I13 / size, I23 / size
     r = branch_sign(branch) * np.sqrt(I11 * I22)
     w1, w2 = emitted(FLOAT, t, I11, I22, I13, I23, r)
     return full(w1, shape), full(w2, shape)
