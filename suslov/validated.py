@@ -29,7 +29,7 @@ from suslov.kernel.enclosure import (
 )
 from suslov.kernel.contexts import ARB
 from suslov.kernel.gauss_angle import arb_root
-from suslov.kernel.kimura import GaloisGroup, exact_body
+from suslov.kernel.kimura import GaloisGroup, exact_body, exact_invariants
 from suslov.kernel.kimura import galois_group as _galois_group
 from suslov.kernel.validate import PREC_RANGE, precision
 from suslov.loader import gf
@@ -108,11 +108,7 @@ def hypergeometric_form(I11, I22, I13, I23, prec: int | None = None) -> Hypergeo
         A, B, C = (2 + kappa + mu + iU) / 2, (kappa + mu - iU) / 2, 1 + kappa
     finally:
         ctx.prec = saved
-    a11, a22, a13, a23 = exact_values
-    den = a11 * a23 * a23 + a13 * a13 * a22
-    exact = {"U^2": a11 * a11 * a22 * a22 * (a13 * a13 + a23 * a23) / den**2,
-             "Re w_-^2": a11 * a22 * (a11 - a22) * (a13 * a13 * a22 - a11 * a23 * a23) / den**2,
-             "Im w_-^2": (-2 * a11 * a13 * a22 * a23 * (a11 - a22) / den**2, a11 * a22)}
+    exact = exact_invariants(*exact_values)
     return HypergeometricForm(A, B, C, {"s=i": 0, "s=-i": 1, "s=oo": "oo"},
                               {"s=i": kappa, "s=-i": mu, "s=oo": iU}, (kappa, mu, 1 + iU), exact)
 

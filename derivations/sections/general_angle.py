@@ -111,7 +111,7 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     result = DerivationResult(NAME)
     # the ball checks need no other result: started with the build in the worker processes (PREFETCH);
     # they evaluate the code of the emitted invariants, which gauss certifies
-    if gauss_result.exports["emit"][0].source().split('"""')[-1] != ball_jobs()[0][3].split('"""')[-1]:
+    if gauss_result.exports["emit"][0].source().split('"""')[-1] != PREFETCH[0][1][0][3].split('"""')[-1]:
         raise RuntimeError("the ball checks' code of _gauss_invariants differs from the certified emitted one")
 
     # 1. connection: diagonal of M_i from its trace and tr(M_oo M_i); the H-coefficient after the loop

@@ -35,7 +35,9 @@ from dataclasses import dataclass
 from fractions import Fraction
 from math import isqrt
 
-__all__ = ["GaloisGroup", "exact_body", "galois_group"]
+from suslov.kernel.validate import rational
+
+__all__ = ["GaloisGroup", "exact_body", "exact_invariants", "galois_group"]
 
 NAMES = ("I11", "I22", "I13", "I23")
 METHOD = ("exact: Kimura's theorem on Gauss's equation of the body (exponent differences kappa, mu, 1 + iU), "
@@ -59,20 +61,9 @@ class GaloisGroup:
         return "SO(2,C)" if self.liouvillian else "SO(3,C)"
 
 
-def _exact(name: str, value) -> Fraction:
-    if isinstance(value, bool):
-        raise ValueError(f"{name}={value!r}: must be a real number (int, Fraction, decimal string or float)")
-    try:
-        number = Fraction(value.strip()) if isinstance(value, str) else Fraction(value)
-    except (TypeError, ValueError, OverflowError, ZeroDivisionError):
-        raise ValueError(f"{name}={value!r}: must be a finite real number (int, Fraction, 'a/b', a decimal "
-                         "string such as '0.3', or a float)") from None
-    return number
-
-
 def exact_body(I11, I22, I13, I23) -> tuple:
     """The four entries as Fractions, validated: I11, I22 > 0, not I13 = I23 = 0 (ValueError naming the field)."""
-    values = tuple(_exact(n, x) for n, x in zip(NAMES, (I11, I22, I13, I23)))
+    values = tuple(rational(n, x) for n, x in zip(NAMES, (I11, I22, I13, I23)))
     for name, x in zip(NAMES[:2], values[:2]):
         if x <= 0:
             raise ValueError(f"{name}={x}: must be positive (a principal moment of the paper's frame)")
@@ -80,6 +71,14 @@ def exact_body(I11, I22, I13, I23) -> tuple:
         raise ValueError("I13=0 and I23=0: the constraint axis is a principal axis; every motion is an equilibrium "
                          "(no Poisson equations with omega = u tanh t + v sech t)")
     return values
+
+
+def exact_invariants(a11: Fraction, a22: Fraction, a13: Fraction, a23: Fraction) -> dict:
+    """U^2, Re w_-^2 = |u|^2 - |v|^2 and Im w_-^2 = q sqrt(R) as (q, R), exactly (certified forms: gauss)."""
+    den = a11 * a23 * a23 + a13 * a13 * a22
+    return {"U^2": a11 * a11 * a22 * a22 * (a13 * a13 + a23 * a23) / den**2,
+            "Re w_-^2": a11 * a22 * (a11 - a22) * (a13 * a13 * a22 - a11 * a23 * a23) / den**2,
+            "Im w_-^2": (-2 * a11 * a13 * a22 * a23 * (a11 - a22) / den**2, a11 * a22)}
 
 
 def galois_group(I11, I22, I13, I23) -> GaloisGroup:
@@ -90,13 +89,12 @@ def galois_group(I11, I22, I13, I23) -> GaloisGroup:
     >>> galois_group(2, 1, 0, "-0.3333333333333333").group   # not -1/3: p^2 is not an integer
     'SO(3,C)'
     """
-    a11, a22, a13, a23 = exact_body(I11, I22, I13, I23)
-    den = a11 * a23 * a23 + a13 * a13 * a22
+    a11, a22, a13, a23 = values = exact_body(I11, I22, I13, I23)
     if a13 * a23 * (a11 - a22) != 0:
         return GaloisGroup("SO(3,C)", False, METHOD, "SL(2,C)",
                            "u.v != 0 (I13 I23 (I11 - I22) != 0): w_-^2 is not real, kappa is not half-odd, and no "
                            "reducible case exists ((u x v)_3 != 0): not Liouvillian")
-    a = a11 * a22 * (a11 - a22) * (a13 * a13 * a22 - a11 * a23 * a23) / (den * den)   # |u|^2 - |v|^2 = w_-^2
+    a = exact_invariants(*values)["Re w_-^2"]     # = w_-^2 here (u.v = 0)
     minus = -a
     root = isqrt(minus.numerator) if minus > 0 and minus.denominator == 1 else None
     if root is not None and root * root == minus.numerator and root % 2 == 1:

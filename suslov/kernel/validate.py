@@ -122,7 +122,7 @@ def rational(name: str, value, *, positive: bool = False) -> Fraction:
             number = Fraction(int(mantissa)) * Fraction(2) ** int(exponent)
         else:
             number = Fraction(value)
-    except (TypeError, ValueError, OverflowError):
+    except (TypeError, ValueError, OverflowError, ZeroDivisionError):
         raise ValueError(f"{name}={value!r}: must be a rational number (int, Fraction, float or 'a/b')") from None
     if positive and number <= 0:
         raise ValueError(f"{name}={value!r}: must be > 0")
