@@ -46,8 +46,8 @@ def floats(body):
 def row(name, body):
     rows = []
     for digits in (12, 30):
-        seconds = median_seconds(lambda digits=digits: scattering_angle_enclosure(*body, digits=digits, method="integration"), 5)
-        width = scattering_angle_enclosure(*body, digits=digits, method="integration").width
+        seconds = median_seconds(lambda digits=digits: scattering_angle_enclosure(*body, dps=digits, method="integration"), 5)
+        width = scattering_angle_enclosure(*body, dps=digits, method="integration").width
         rows.append({"body": name, "route": f"enclosure, digits={digits}", "seconds": seconds, "width": width,
                      "rigorous": True})
     I11, I22, I13, I23 = floats(body)

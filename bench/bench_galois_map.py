@@ -60,7 +60,7 @@ def main(argv=None) -> int:
     ball_times, ball_match = [], 0
     for I13, I23 in sample:
         start = time.perf_counter()
-        verdict = monodromy("2", "1", I13, I23, digits=20, max_digits=80).verdict
+        verdict = monodromy("2", "1", I13, I23, dps=20, max_dps=80).verdict
         ball_times.append(time.perf_counter() - start)
         ball_match += verdict == galois_group("2", "1", I13, I23).group
     times = []

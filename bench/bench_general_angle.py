@@ -16,7 +16,7 @@ Measured side by side, on the same bodies, in one process:
 2. balls.  ``suslov.general_scattering_angle_ball(..., prec=BITS)`` at ``--digits`` (default 300)
    decimal digits (BITS = ceil(digits log2 10) + 8) on a few exact bodies, seconds (median of
    ``--repeat`` after a warm-up, and the cold first call) and width 2 rad; beside it the validated
-   integration ``suslov.validated.scattering_angle_enclosure(..., digits=30)`` (``method="integration"``
+   integration ``suslov.validated.scattering_angle_enclosure(..., dps=30)`` (``method="integration"``
    when the keyword exists) on the same bodies: seconds, width, and whether its ball contains the
    closed-form ball's midpoint (and the two balls overlap).
 
@@ -146,9 +146,9 @@ def ball_part(digits: int, enc_digits: int, repeat: int, enc_repeat: int) -> dic
         cold = time.perf_counter() - start
         seconds = median_seconds(lambda body=body: sf.general_scattering_angle_ball(*body, prec=bits), repeat)
         w_str, w_log = width_of(ball)
-        enc_s = median_seconds(lambda body=body: scattering_angle_enclosure(*body, digits=enc_digits,
+        enc_s = median_seconds(lambda body=body: scattering_angle_enclosure(*body, dps=enc_digits,
                                                                             **integration_kw), enc_repeat)
-        enc = scattering_angle_enclosure(*body, digits=enc_digits, **integration_kw)
+        enc = scattering_angle_enclosure(*body, dps=enc_digits, **integration_kw)
         e_str, e_log = width_of(enc.angle)
         mid = arb(ball.mid())
         rows.append({"body": body, "closed_bits": bits, "closed_seconds": seconds, "closed_cold_seconds": cold,

@@ -41,7 +41,7 @@ def verdict_chunk(task) -> list:
         if Fraction(I13) == 0 and Fraction(I23) == 0:
             out.append("equilibrium")
             continue
-        out.append(monodromy("2", "1", I13, I23, digits=digits, max_digits=4 * digits).verdict)
+        out.append(monodromy("2", "1", I13, I23, dps=digits, max_dps=4 * digits).verdict)
     return out
 
 
@@ -72,7 +72,7 @@ def one_body(repeat: int = 5) -> dict:
     times, radius = [], None
     for _ in range(repeat):
         start = time.perf_counter()
-        m = monodromy("5/4", "1", "3/10", "-1/2", digits=32)
+        m = monodromy("5/4", "1", "3/10", "-1/2", dps=32)
         times.append(time.perf_counter() - start)
         radius = m.radius
     return {"median_seconds": statistics.median(times), "radius": radius, "verdict": m.verdict}

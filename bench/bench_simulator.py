@@ -73,7 +73,7 @@ def trajectory(log):
     dop_s = statistics.median(timed(lambda: numeric_angle(body), 3))
     a_t, e_t, _ = taylor.taylor_angle(body, tol=1e-12)
     a_d, e_d, _ = numeric_angle(body)
-    ball = scattering_angle_enclosure(*body.entries, digits=30, method="integration").angle
+    ball = scattering_angle_enclosure(*body.entries, dps=30, method="integration").angle
     truth = float(ball.mid())
     log(f"trajectory: taylor {taylor_s * 1e3:.3f} ms, DOP853 {dop_s:.3f} s")
     return {"taylor_seconds": taylor_s, "taylor_first_call_seconds": first, "dop853_seconds": dop_s,
@@ -126,7 +126,7 @@ def accuracy(log, points=10):
     errors = []
     for row, result in zip(rows, sweep.evaluate_chunk((options, rows))):
         body = sweep.point_body(dict(zip(options["columns"], row)), "tensor")
-        ball = scattering_angle_enclosure(*body.entries, digits=30, method="integration").angle
+        ball = scattering_angle_enclosure(*body.entries, dps=30, method="integration").angle
         errors.append({"point": row, "error": abs(result["scattering_angle"] - float(ball.mid())),
                        "estimate": result["scattering_angle_error"], "ball_radius": float(ball.rad())})
     log(f"accuracy: max error {max(e['error'] for e in errors):.2e}")

@@ -5,7 +5,13 @@ the import is lazy (PEP 562), so ``suslov.kernel`` and ``suslov.recipes``, which
 module itself imports, can be loaded without a cycle and before ``generated/`` exists (the build
 runs the recipes).  Which generated module: :func:`active_formulas` (the checkout's
 ``generated/``, the wheel's ``suslov.formulas``, ``$SUSLOV_FORMULAS`` or :func:`use_formulas`);
-a larger p range without touching the checkout: :func:`load_formulas` (``load_formulas(pmax=101)``).
+a larger p range without touching the checkout: :func:`load_formulas` (``load_formulas(pmax=101)``);
+the simulator from Python: ``suslov.simulate(scene)`` (:mod:`suslov.simulator.api`).  ``suslov.__version__``
+comes from the package metadata.
+
+Precision follows mpmath's habits everywhere: every ``*_mp`` and ``*_ball`` function and every routine
+of :mod:`suslov.validated` works at ``mpmath.mp.dps`` unless given ``dps=`` (decimal digits); the ball
+routes also take ``prec=`` (bits, python-flint's unit).
 
 Layers (DESIGN.md, data flow): ``suslov.kernel`` (numerical machinery) and
 ``suslov.recipes`` (constructions written once, run by the build exactly and by the module
@@ -14,9 +20,17 @@ numerically) need neither SymPy nor ``generated``; the simulator modules import
 """
 from __future__ import annotations
 
+import importlib.metadata
+
 from suslov.loader import active_formulas, load_formulas, use_formulas  # noqa: F401  (public re-exports)
 
-_OWN = ["active_formulas", "load_formulas", "use_formulas"]
+try:
+    __version__ = importlib.metadata.version("suslov-certified")
+except importlib.metadata.PackageNotFoundError:   # a checkout used without installing it
+    __version__ = "0+unknown"
+
+
+_OWN = ["active_formulas", "load_formulas", "use_formulas", "simulate"]
 
 
 def _public_names() -> list[str]:
@@ -28,6 +42,10 @@ def __getattr__(name: str):
         return _public_names()
     if name.startswith("__"):
         raise AttributeError(name)
+    if name == "simulate":   # the simulator's Python entry point (suslov.simulator.api), loaded on first use
+        from suslov.simulator.api import simulate
+
+        return simulate
     module = active_formulas()
     if name in module.__all__:
         return getattr(module, name)

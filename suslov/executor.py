@@ -13,8 +13,15 @@ each chunk.  Guarantees, whatever runs the chunks:
 * **Clear failures.**  An unreachable scheduler is reported within ``CONNECT_TIMEOUT`` seconds
   (:class:`SchedulerError`); Ctrl-C stops the pool and leaves the finished chunks in the store.
 
-Local processes use the ``spawn`` start method: a forked child would inherit LLVM's state from a
-parent that already compiled a Taylor integrator, which is not fork-safe.
+Local processes are loky's (``loky.ProcessPoolExecutor``, joblib's pool; ``loky`` start method: a fresh
+interpreter per worker, since a forked child would inherit LLVM's state from a parent that already compiled
+a Taylor integrator, which is not fork-safe).  loky, not ``concurrent.futures``, because an interrupted run
+must end now: ``concurrent.futures`` can only cancel what has not started, and its exit hook then waits
+for the running chunks (a Ctrl-C'd ``--pmax 401`` build ran on for 41 minutes), while loky's
+``shutdown(kill_workers=True)`` ends them.  The waits poll (``POLL`` seconds) so that a SIGINT which the
+kernel delivered to another thread of this process is still handled at once by the main thread.
+Workers also ask the kernel to kill them when their parent dies (``PR_SET_PDEATHSIG``, Linux), with a
+watching thread as the portable fallback.
 """
 from __future__ import annotations
 
@@ -29,13 +36,14 @@ import socket
 import threading
 import time
 from collections.abc import Callable
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-from multiprocessing import get_context
+from concurrent.futures import FIRST_COMPLETED, wait
 from pathlib import Path
 
+from suslov.interrupts import die_with_parent
 from suslov.outdir import make_dir, remove_stale
 
 CONNECT_TIMEOUT = 10.0
+POLL = 0.25   # seconds between checks for a pending signal while waiting for workers
 TMP_PREFIX = ".suslov-tmp"   # in-flight files: TMP_PREFIX-PID-KEY; those of dead processes are removed
 SCHEDULER_ENV = "SUSLOV_SCHEDULER"
 
@@ -176,6 +184,15 @@ def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkSto
     return results, len(pending)
 
 
+def wait_first(futures) -> set:
+    """The futures of ``futures`` that are done, waiting for at least one; returns to the interpreter every
+    ``POLL`` seconds so that Ctrl-C is handled even when the kernel delivered it to a helper thread."""
+    while True:
+        done, _ = wait(set(futures), timeout=POLL, return_when=FIRST_COMPLETED)
+        if done:
+            return done
+
+
 class Ahead:
     """Chunks submitted to the local worker processes *now*, collected later (:func:`submit_ahead`).
 
@@ -196,7 +213,7 @@ class Ahead:
         computed = len(self.futures)
         try:
             while self.futures:
-                done, _ = wait(set(self.futures), return_when=FIRST_COMPLETED)
+                done = wait_first(self.futures)
                 for future in sorted(done, key=self.futures.get):
                     i = self.futures.pop(future)
                     self.results[i] = future.result()
@@ -210,12 +227,12 @@ class Ahead:
         return self.results, computed
 
     def cancel(self) -> None:
-        """Drop what has not started; a pool with work left running is shut down (no orphan computes on)."""
-        running = [future for future in self.futures if not future.cancel()]
+        """Drop the chunks not collected: a pool with any of them unfinished is killed (no orphan computes on;
+        cancelling them one by one first would leave loky's shutdown tripping over cancelled futures)."""
+        unfinished = [future for future in self.futures if not future.done()]
         self.futures = {}
-        if running:
-            _POOLS.pop(self.workers, None)
-            self.pool.shutdown(wait=False, cancel_futures=True)
+        if unfinished:
+            _kill(self.workers, self.pool)
 
 
 def submit_ahead(work: Callable, chunks: list, keys: list[str], *, store: ChunkStore | None = None,
@@ -228,7 +245,7 @@ def submit_ahead(work: Callable, chunks: list, keys: list[str], *, store: ChunkS
 _POOLS: dict = {}
 
 
-def _local_pool(workers: int) -> ProcessPoolExecutor:
+def _local_pool(workers: int):
     """The process pool for ``workers`` spawned processes, kept for the life of this process.
 
     Phases that follow each other (the build's residue, meromorphic, galois and round-trip
@@ -237,9 +254,19 @@ def _local_pool(workers: int) -> ProcessPoolExecutor:
     """
     pool = _POOLS.get(workers)
     if pool is None:
-        pool = _POOLS[workers] = ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn"),
+        from loky import ProcessPoolExecutor
+        from loky.backend.context import get_context
+
+        pool = _POOLS[workers] = ProcessPoolExecutor(max_workers=workers, context=get_context("loky"),
                                                      initializer=_worker_init, initargs=(os.getpid(),))
     return pool
+
+
+def _kill(workers: int, pool) -> None:
+    """Forget ``pool`` and end its processes now, running chunks included."""
+    if _POOLS.get(workers) is pool:
+        del _POOLS[workers]
+    pool.shutdown(wait=False, kill_workers=True)
 
 
 def _worker_init(parent: int) -> None:
@@ -247,6 +274,7 @@ def _worker_init(parent: int) -> None:
     itself within half a second once its parent is gone (``kill -9`` of a build or a sweep leaves no
     orphans computing, and with them the resource tracker, whose pipe they hold, ends too)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    die_with_parent()
 
     def watch():
         while os.getppid() == parent:
@@ -260,7 +288,7 @@ def _worker_init(parent: int) -> None:
 def shutdown_pools() -> None:
     """Stop every kept worker process (at exit, or to release them earlier)."""
     while _POOLS:
-        _POOLS.popitem()[1].shutdown(wait=True, cancel_futures=True)
+        _POOLS.popitem()[1].shutdown(wait=True)
 
 
 # chunks submitted ahead: enough that the caller's ``meanwhile`` work (the build's serial checks) never
@@ -282,14 +310,12 @@ def _run_local(work, chunks, pending, workers, finish, meanwhile):
         submit_more()
         meanwhile()
         while futures:
-            done, _ = wait(set(futures), return_when=FIRST_COMPLETED)
-            for future in sorted(done, key=futures.get):
+            for future in sorted(wait_first(futures), key=futures.get):
                 finish(futures.pop(future), future.result())
             submit_more()
     except BaseException:
         # an interrupted or failed run leaves no worker behind and no pool in an unknown state
-        _POOLS.pop(workers, None)
-        pool.shutdown(wait=False, cancel_futures=True)
+        _kill(workers, pool)
         raise
 
 

@@ -9,14 +9,16 @@ with the per-p objects up to its ``PMAX``.  This module finds the one in use and
   inside the ``suslov`` namespace).
 * :func:`load_formulas` -- a certified module for a larger range without touching the checkout:
   ``load_formulas(pmax=101)`` returns a module from the per-user store (:func:`store_dir`), building
-  it once with ``build_formulas.py --pmax 101 --install`` (which certifies it, through the certificate
-  cache, with progress on stderr) when the store has none that covers the range;
-  ``load_formulas(path=DIR)`` loads a tree written with ``--out DIR``.
+  it once with ``python -m suslov.build --pmax 101 --install`` (the derivations shipped in the package,
+  or the checkout's: :mod:`suslov.build`; it certifies the module, through the certificate cache, with
+  progress on stderr) when the store has none that covers the range; ``load_formulas(path=DIR)`` loads
+  a tree written with ``--out DIR``.
 * :data:`gf` -- a stand-in that forwards attribute access to the active module at call time, so the
   simulator modules follow :func:`use_formulas` without re-importing.
 
-Building needs the source checkout (``derivations/`` and ``build_formulas.py``); a wheel ships the
-default module only and says so.
+Building needs the ``[build]`` extra (SymPy, symengine, Jinja2); without it :func:`load_formulas` says
+which extra to install.  The build runs in a child process that ends with its caller: Ctrl-C stops both,
+and a caller killed outright takes the build with it (``PR_SET_PDEATHSIG`` on Linux).
 """
 from __future__ import annotations
 
@@ -24,27 +26,32 @@ import importlib
 import importlib.util
 import json
 import os
+import signal
 import subprocess
 import sys
 from pathlib import Path
 from types import ModuleType
 
+from suslov.extras import require
+from suslov.interrupts import die_with_parent
+
 __all__ = ["active_formulas", "use_formulas", "load_formulas", "store_dir", "gf", "FORMULAS_ENV", "DATA_ENV"]
 
 FORMULAS_ENV = "SUSLOV_FORMULAS"   # a directory holding a generated suslov_formulas.py
 DATA_ENV = "SUSLOV_DATA_DIR"       # the per-user store (default: $XDG_DATA_HOME/suslov-certified)
-_CHECKOUT = Path(__file__).resolve().parent.parent
 _active: ModuleType | None = None
 _loaded: dict = {}
 
 
 def store_dir() -> Path:
-    """The per-user store of built modules: ``$SUSLOV_DATA_DIR``, else ``$XDG_DATA_HOME/suslov-certified``,
-    else ``~/.local/share/suslov-certified``."""
+    """The per-user store of built modules: ``$SUSLOV_DATA_DIR``, else the platform's per-user data
+    directory (platformdirs: ``$XDG_DATA_HOME/suslov-certified`` or ``~/.local/share/suslov-certified``
+    on Linux)."""
     if os.environ.get(DATA_ENV):
         return Path(os.environ[DATA_ENV]).expanduser()
-    base = os.environ.get("XDG_DATA_HOME") or Path.home() / ".local" / "share"
-    return Path(base) / "suslov-certified"
+    import platformdirs
+
+    return Path(platformdirs.user_data_dir("suslov-certified", appauthor=False))
 
 
 def _pmax_of(directory: Path) -> int | None:
@@ -150,15 +157,16 @@ def load_formulas(pmax: int | None = None, path=None, *, build: bool = True, use
 
 
 def _build(pmax: int, quiet: bool) -> None:
-    script = _CHECKOUT / "build_formulas.py"
-    if not (script.is_file() and (_CHECKOUT / "derivations").is_dir()):
-        raise RuntimeError(f"pmax={pmax}: building a module needs the source checkout (build_formulas.py and "
-                           "derivations/); this installation ships the default module only (pmax "
-                           f"{active_formulas().PMAX})")
-    command = [sys.executable, str(script), "--pmax", str(pmax), "--install"] + (["--quiet"] if quiet else [])
-    done = subprocess.run(command, cwd=_CHECKOUT, stdout=subprocess.PIPE if quiet else None, text=True)
+    require("build", f"load_formulas(pmax={pmax}) beyond the shipped module (pmax {active_formulas().PMAX})")
+    command = [sys.executable, "-m", "suslov.build", "--pmax", str(pmax), "--install"] + (["--quiet"] if quiet else [])
+    # the child dies with this process (SIGTERM; its own workers die with it in turn); Ctrl-C reaches both,
+    # and subprocess.run kills the child on any exception here
+    done = subprocess.run(command, stdout=subprocess.PIPE if quiet else None, text=True,
+                          preexec_fn=lambda: die_with_parent(signal.SIGTERM))
+    if done.returncode == 130:
+        raise KeyboardInterrupt
     if done.returncode != 0:
-        raise RuntimeError(f"build_formulas.py --pmax {pmax} --install failed (exit {done.returncode}); see its "
+        raise RuntimeError(f"python -m suslov.build --pmax {pmax} --install failed (exit {done.returncode}); see its "
                            "message above")
 
 

@@ -31,7 +31,7 @@ from suslov.kernel.contexts import ARB
 from suslov.kernel.gauss_angle import arb_root
 from suslov.kernel.kimura import GaloisGroup, exact_body, exact_invariants
 from suslov.kernel.kimura import galois_group as _galois_group
-from suslov.kernel.validate import PREC_RANGE, precision
+from suslov.kernel.validate import PREC_RANGE, ball_prec, mp_dps, precision, renamed_keywords
 from suslov.loader import gf
 
 __all__ = ["AngleEnclosure", "EnclosureTooCostly", "GaloisGroup", "HypergeometricForm", "galois_group",
@@ -83,14 +83,14 @@ class HypergeometricForm:
     exact: dict | None            # exact input: U^2, Re w_-^2 (Fractions), Im w_-^2 = q sqrt(R) as (q, R)
 
 
-def hypergeometric_form(I11, I22, I13, I23, prec: int | None = None) -> HypergeometricForm:
+def hypergeometric_form(I11, I22, I13, I23, dps: int | None = None, prec: int | None = None) -> HypergeometricForm:
     """Gauss's hypergeometric equation of the Poisson equations of a body (the general case in closed form).
 
     With s = sinh t, the spinor lift of eq:whole, psi1 = z^(kappa/2) (1-z)^(mu/2) F(z), z = (1 + i s)/2
     (certified: ``gauss``), gives Gauss's equation with ``A = (2 + kappa + mu + iU)/2``,
     ``B = (kappa + mu - iU)/2``, ``C = 1 + kappa``; ``kappa = (i/2) w_-``, ``mu = (i/2) w_+``,
     ``w_-+^2 = (u -+ i v).(u -+ i v)``, ``U^2 = u.u`` for omega = u tanh t + v sech t.  ``A``, ``B``, ``C``
-    are complex balls at ``prec`` bits (default ``flint.ctx.prec``); for exact input (ints, Fractions,
+    are complex balls at ``prec`` bits or ``dps`` digits (default ``mpmath.mp.prec``); for exact input (ints, Fractions,
     decimal strings, floats as their binary value) ``exact`` holds the squares exactly.
 
     >>> form = hypergeometric_form(2, 1, 0, "-1/3")       # I13 = 0, p = 3: kappa = -3/2
@@ -99,7 +99,7 @@ def hypergeometric_form(I11, I22, I13, I23, prec: int | None = None) -> Hypergeo
     """
     exact_values = exact_body(I11, I22, I13, I23)
     saved = ctx.prec
-    ctx.prec = (precision("prec", prec, PREC_RANGE, "bits") if prec is not None else saved) + 20
+    ctx.prec = ball_prec(dps, prec) + 20
     try:
         body = [arb(q.numerator) / q.denominator for q in exact_values]
         U2, a, b, _ = gf._gauss_invariants(ARB, *body)
@@ -129,14 +129,16 @@ def galois_group(I11, I22, I13, I23) -> GaloisGroup:
     return _galois_group(I11, I22, I13, I23)
 
 
-def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, digits: int = 30,
+def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, dps: int | None = None,
                                prec: int | None = None, max_seconds: float | None = MAX_SECONDS,
-                               progress=None, method: str = "closed_form") -> AngleEnclosure:
+                               progress=None, method: str = "closed_form", **deprecated) -> AngleEnclosure:
     """Rigorous enclosure of the scattering angle of any body (I12 = 0 frame, a = e3, I11, I22 > 0).
 
     Entries are ints, Fractions, decimal strings (exact) or floats (their binary value).  For
     I13 = 0 the result contains the closed form of Theorem 5.2 (``scattering_angle``).
-    ``digits``: an integer in [1, 300]; ``prec`` (bits, default 3.33 digits + 40) in [16, 100000].
+    ``dps``: the decimal digits asked of the ball, an integer in [1, 300] (default ``mpmath.mp.dps``; the old
+    name ``digits=`` still works, with a ``DeprecationWarning``); ``prec`` (working bits, default
+    3.33 dps + 40) in [16, 100000].
     ``method="closed_form"`` (default): the certified closed form of every body
     (``general_scattering_angle_ball``) in ball arithmetic, milliseconds even at 300 digits;
     ``method="integration"``: validated integration of the ss solution (the independent route the
@@ -145,11 +147,12 @@ def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, digits: int 
     :class:`suslov.kernel.enclosure.EnclosureTooCostly` saying how far it got and the estimated total;
     ``progress(fraction, seconds, estimated_total_or_None)`` is called at most once a second.
 
-    >>> e = scattering_angle_enclosure("5/4", 1, "0.3", "-0.5", digits=12)
+    >>> e = scattering_angle_enclosure("5/4", 1, "0.3", "-0.5", dps=12)
     >>> e.width < 1e-11, e.angle.contains(e.angle.mid())
     (True, True)
     """
-    digits = precision("digits", digits, DIGITS_RANGE)
+    dps = renamed_keywords("scattering_angle_enclosure", deprecated, digits="dps").get("dps", dps)
+    digits = precision("dps", mp_dps(None) if dps is None else dps, DIGITS_RANGE)
     if prec is not None:
         prec = precision("prec", prec, PREC_RANGE, "bits")
     if method not in ("closed_form", "integration"):
@@ -179,7 +182,8 @@ def _closed_form_enclosure(I11, I22, I13, I23, branch, digits, prec) -> AngleEnc
     return AngleEnclosure(angle, cos_angle, (), 0, 0, bits, {"closed_form": float(angle.rad())}, (), ())
 
 
-def monodromy(I11, I22, I13, I23, digits: int = 30, branch: int = 1, max_digits: int | None = None):
+def monodromy(I11, I22, I13, I23, dps: int | None = None, branch: int = 1, max_dps: int | None = None,
+              **deprecated):
     """Certified monodromy and differential Galois group of the Poisson equations of any body.
 
     The paper's open problem (Conclusion): for omega(t) = u tanh t + v sech t (eq:o12, this body's
@@ -190,25 +194,29 @@ def monodromy(I11, I22, I13, I23, digits: int = 30, branch: int = 1, max_digits:
     ``exponents`` (per singular point), ``verdict`` (``"SO(3,C)"``, ``"reducible"``, ``"unknown"``;
     ``"imprimitive"`` and ``"finite"`` are never concluded from balls), ``liouvillian`` (True, False or
     None) and ``certificates`` (claim, pass/fail/unknown, detail).  The theorems each step uses are in
-    :mod:`suslov.kernel.monodromy`.  ``digits`` in [10, 200]: the radius asked of every entry.  Near
+    :mod:`suslov.kernel.monodromy`.  ``dps`` in [10, 200] (default ``max(mpmath.mp.dps, 10)``; the old names
+    ``digits=`` and ``max_digits=`` still work, with a ``DeprecationWarning``): the radius 10^-dps asked of
+    every entry.  Near
     I13 = I23 = 0 ``|omega|`` is large, the entries grow like ``exp(2 pi |u|)`` and the Taylor sums
     cancel; the loops then run with ``result.guard`` extra digits (estimated from the body, increased
     once if the radius still comes out wider than asked), and not at all beyond
     ``suslov.kernel.monodromy.MAX_WORKING_DIGITS`` (verdict "unknown", saying how many digits it would
     take).  When a test is still undecided the computation is repeated at twice the digits up to
-    ``max_digits`` (default ``min(4 digits, 200)``); ``result.digits`` says which precision decided.
+    ``max_dps`` (default ``min(4 dps, 200)``); ``result.digits`` says which precision decided.
     "reducible" (odd p) needs the exact no-logarithm certificate of that p: I13 = 0, or I23 = 0 by
     eq:lina, and p at most the loaded formulas' ``PMAX`` (beyond it: "unknown").
 
-    >>> m = monodromy("5/4", 1, "3/10", "-1/2", digits=20)
+    >>> m = monodromy("5/4", 1, "3/10", "-1/2", dps=20)
     >>> m.verdict, m.liouvillian
     ('SO(3,C)', False)
     """
     from suslov.kernel.fuchsian_flow import guard_digits, residues
     from suslov.kernel.monodromy import compute_monodromy, decide_group
 
-    digits = precision("digits", digits, (10, 200))
-    ceiling = min(4 * digits, 200) if max_digits is None else precision("max_digits", max_digits, (digits, 200))
+    old = renamed_keywords("monodromy", deprecated, digits="dps", max_digits="max_dps")
+    dps, max_dps = old.get("dps", dps), old.get("max_dps", max_dps)
+    digits = precision("dps", max(mp_dps(None), 10) if dps is None else dps, (10, 200))
+    ceiling = min(4 * digits, 200) if max_dps is None else precision("max_dps", max_dps, (digits, 200))
 
     def coefficients(working_digits: int):
         saved = ctx.prec

@@ -90,15 +90,15 @@ def test_verify_refuses_unreadable_certificates_whatever_the_flags(tmp_path, dam
 
 @pytest.mark.parametrize("value", [float("nan"), "30", 0, 1000, 2.5])
 def test_enclosure_digits_are_validated(value):
-    with pytest.raises(ValueError, match=r"digits=.*\[1, 300\]"):
-        scattering_angle_enclosure(2, 1, "0.3", "-0.5", digits=value, method="integration")
+    with pytest.raises(ValueError, match=r"dps=.*\[1, 300\]"):
+        scattering_angle_enclosure(2, 1, "0.3", "-0.5", dps=value, method="integration")
 
 
 def test_costly_enclosure_stops_at_max_seconds_and_reports_progress():
     reports = []
     start = time.perf_counter()
     with pytest.raises(EnclosureTooCostly, match="max_seconds=2"):
-        scattering_angle_enclosure(2, 1, 0, "-1e-4", digits=10, max_seconds=2,
+        scattering_angle_enclosure(2, 1, 0, "-1e-4", dps=10, max_seconds=2,
                                    progress=lambda *a: reports.append(a), method="integration")
     assert time.perf_counter() - start < 10 and reports
 
@@ -116,7 +116,7 @@ def test_per_d_caches_are_bounded():
 
 
 def test_large_sweep_needs_confirmation(tmp_path, capsys):
-    from suslov.simulator.cli import main
+    from suslov.cli import main
 
     scene = tmp_path / "big.toml"
     scene.write_text('name = "big"\n[sweep]\np = { linear = [0.5, 9.5], count = 1000 }\n'

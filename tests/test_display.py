@@ -18,7 +18,7 @@ def printed_digits(text: str) -> int:
 
 
 def test_enclosure_prints_the_digits_its_width_supports():
-    e = scattering_angle_enclosure("5/4", 1, "3/10", "-1/2", digits=30, method="integration")
+    e = scattering_angle_enclosure("5/4", 1, "3/10", "-1/2", dps=30, method="integration")
     assert e.width < 1e-28
     assert printed_digits(repr(e.angle)) >= 28 and "+/-" in repr(e.angle)
     assert printed_digits(str(e)) >= 28     # the dataclass repr shows the ball too

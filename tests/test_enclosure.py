@@ -44,7 +44,7 @@ def mp_coefficients(I11, I22, I13, I23):
 
 @pytest.mark.parametrize("body", BODIES, ids=lambda b: ",".join(b))
 def test_enclosure_contains_an_independent_50_digit_value(body):
-    enclosure = scattering_angle_enclosure(*body, digits=30, method="integration")
+    enclosure = scattering_angle_enclosure(*body, dps=30, method="integration")
     assert enclosure.width < 1e-25
     with mpmath.workdps(60):
         u, v = mp_coefficients(*body)
@@ -64,7 +64,7 @@ def test_special_body_contains_the_closed_form():
     I11, I22, I23 = Fraction(5, 4), Fraction(1), Fraction(-1, 4)       # p^2 = 4, p = 2, d = 1/2
     p, d = sf._special_parameters(MP, *(mpmath.mpf(x.numerator) / x.denominator for x in (I11, I22, I23)))
     assert abs(p - 2) < 1e-30 and abs(d - mpmath.mpf(1) / 2) < 1e-30
-    enclosure = scattering_angle_enclosure(I11, I22, 0, I23, digits=30, method="integration")
+    enclosure = scattering_angle_enclosure(I11, I22, 0, I23, dps=30, method="integration")
     closed = sf.scattering_angle_ball(2, Fraction(1, 2), prec=200)
     assert enclosure.angle.overlaps(closed) and enclosure.width < 1e-25
 
@@ -77,7 +77,7 @@ def test_general_body_agrees_with_the_simulators_integration():
     body = make_body(tensor=tensor)
     angle, error, _ = numeric_angle(body)
     I11, I22, I13, I23 = body.entries
-    enclosure = scattering_angle_enclosure(I11, I22, I13, I23, digits=15, method="integration")   # floats: their binary values
+    enclosure = scattering_angle_enclosure(I11, I22, I13, I23, dps=15, method="integration")   # floats: their binary values
     assert abs(angle - float(enclosure.angle.mid())) <= error + enclosure.width + 1e-12
 
 

@@ -113,7 +113,7 @@ EXACT = [("5/4", 1, "3/10", "-1/2"), (1, "5/2", "2/5", "7/10"), (2, 1, "1/1000",
 @pytest.mark.parametrize("body", EXACT)
 def test_ball_against_validated_integration(body):
     kwargs = {"method": "integration"} if "method" in inspect.signature(scattering_angle_enclosure).parameters else {}
-    integrated = scattering_angle_enclosure(*body, digits=30, **kwargs).angle
+    integrated = scattering_angle_enclosure(*body, dps=30, **kwargs).angle
     ball = sf.general_scattering_angle_ball(*body, prec=200)
     direct = direct_formula(body)
     assert integrated.rad() < 1e-25 and ball.rad() < 1e-50 and direct.rad() < 1e-50

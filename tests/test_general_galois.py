@@ -66,7 +66,7 @@ def test_exponents_against_validated_monodromy_traces(body):
     """x = e^t is a double cover of s = sinh t ramified at s = +-i: the loop about x = +-i is twice the loop
     about s = +-i, so tr M(x=+-i) = 1 + 2 cos(4 pi kappa) (resp. mu); the loop about x = 0 is one loop about
     s = oo: tr M(x=0) = 1 + 2 cosh(2 pi U).  The monodromy is the independent complex-path computation."""
-    mono = monodromy(*body, digits=20)
+    mono = monodromy(*body, dps=20)
     form = hypergeometric_form(*body, prec=120)
     kappa, mu = form.exponent_differences["s=i"], form.exponent_differences["s=-i"]
     iU = form.exponent_differences["s=oo"]
@@ -84,7 +84,7 @@ def test_exponents_against_validated_monodromy_traces(body):
 
 
 def test_monodromy_verdict_uses_the_exact_decision():
-    m = monodromy("2", "1", "0", "-0.3333333333333333", digits=10, max_digits=10)
+    m = monodromy("2", "1", "0", "-0.3333333333333333", dps=10, max_dps=10)
     assert m.verdict == "SO(3,C)" and m.liouvillian is False
     assert any("exactly" in claim for claim, *_ in m.certificates)
 

@@ -38,7 +38,7 @@ def contains(ball, value, slack=1e-9):
 @pytest.mark.parametrize("p, I23, kind", [(1, "-1", "odd"), (3, "-1/3", "odd"), (2, "-1/2", "even"), (4, "-1/4", "even"),
                                           (2.5, "-2/5", "non-integer"), (1.3, "-10/13", "non-integer")])
 def test_special_case_reproduces_the_exact_local_monodromy(p, I23, kind):
-    m = monodromy(2, 1, 0, I23, digits=25)
+    m = monodromy(2, 1, 0, I23, dps=25)
     for name in ("x=i", "x=-i"):
         M = m.matrices[name]
         if kind == "odd":
@@ -54,7 +54,7 @@ def test_special_case_reproduces_the_exact_local_monodromy(p, I23, kind):
 @pytest.mark.parametrize("body", [("5/4", "1", "3/10", "-1/2"), ("2", "1", "3/10", "-1/5"), ("3", "1", "-7/10", "1/5")])
 def test_traces_are_those_of_the_local_exponents(body):
     u, v = uv(body)
-    m = monodromy(*body, digits=25)
+    m = monodromy(*body, dps=25)
     with mpmath.workdps(30):
         uu = u[0] ** 2 + u[1] ** 2
         assert contains(m.matrices["x=0"].trace(), 1 + 2 * mpmath.cosh(2 * mpmath.pi * mpmath.sqrt(uu)), 1e-12)
@@ -73,12 +73,12 @@ def test_pole_loop_agrees_with_an_independent_integration_in_t():
         C = np.array([[0, 0, w[1]], [0, 0, -w[0]], [-w[1], w[0], 0]], dtype=complex)
         return C.T
     numeric = circle_monodromy(matrix, 1j * np.pi / 2, 0.6, 3)
-    m = monodromy(*body, digits=20)
+    m = monodromy(*body, dps=20)
     assert contains(m.matrices["x=i"].trace(), np.trace(numeric), 1e-8)
 
 
 def test_relation_group_membership_and_verdict_for_a_general_body():
-    m = monodromy("5/4", 1, "3/10", "-1/2", digits=30)
+    m = monodromy("5/4", 1, "3/10", "-1/2", dps=30)
     assert m.radius < 1e-25
     outcomes = {text.split(":")[0]: outcome for text, outcome, _ in m.certificates}
     assert all(outcome == "pass" for outcome in outcomes.values()), outcomes
@@ -87,11 +87,11 @@ def test_relation_group_membership_and_verdict_for_a_general_body():
 
 def test_verdict_is_the_same_at_two_precisions():
     for body in (("5/4", 1, "3/10", "-1/2"), (2, 1, 0, "-1/3"), (2, 1, 0, "-2/5")):
-        assert monodromy(*body, digits=15).verdict == monodromy(*body, digits=45).verdict
+        assert monodromy(*body, dps=15).verdict == monodromy(*body, dps=45).verdict
 
 
 def test_a_wrong_claim_about_the_group_is_refuted_not_unknown():
-    m = monodromy(2, 1, 0, "-1/2", digits=20)              # p = 2
+    m = monodromy(2, 1, 0, "-1/2", dps=20)              # p = 2
     assert infinite_order(m.matrices["x=0"]) == "pass"        # "the group is finite": refuted
     assert _excludes(m.matrices["x=i"], I3)                   # "M(x=i) = I" (no logarithms): refuted
 
@@ -132,7 +132,7 @@ def test_the_whole_loop_matrix_agrees_with_scipy_from_the_same_base():
 
     base, start = -math.log(2), 1j * math.pi / 2 + 0.6
     column = segment(start, base) @ circle_monodromy(matrix, 1j * math.pi / 2, 0.6, 3) @ segment(base, start)
-    M = monodromy(*body, digits=20).matrices["x=i"]
+    M = monodromy(*body, dps=20).matrices["x=i"]
     for r in range(3):
         for c in range(3):
             assert contains(M[r, c], column.T[r, c], 1e-8)
@@ -164,7 +164,7 @@ def test_one_taylor_step_against_the_matrix_exponential_at_300_digits():
 def test_the_relation_holds_in_its_one_order_and_the_others_are_excluded():
     from suslov.kernel.monodromy import RELATION
 
-    m = monodromy("2", "1", "3/10", "-1/5", digits=30)
+    m = monodromy("2", "1", "3/10", "-1/5", dps=30)
     A, B, C = (m.matrices[name] for name in RELATION)
     assert _contains(A * B * C, m.matrices["x=oo"]) and _excludes(B * A * C, m.matrices["x=oo"])
     relation = next(c for c in m.certificates if c[0].startswith("the ordered product"))
@@ -174,14 +174,14 @@ def test_the_relation_holds_in_its_one_order_and_the_others_are_excluded():
 def test_near_the_equilibrium_the_radius_is_still_as_asked_and_the_verdict_decided():
     """|u| = 19: entries about 1e51, and each Taylor sum cancels about 40 digits; the guard digits
     keep the radius at 10^-digits (before them: relative precision 1e-17 at 40 digits, 'unknown')."""
-    m = monodromy("2", "1", "1/20", "-1/20", digits=20, max_digits=20)
+    m = monodromy("2", "1", "1/20", "-1/20", dps=20, max_dps=20)
     assert m.guard > 60 and m.radius < 1e-20
     assert m.verdict == "SO(3,C)"
 
 
 def test_too_close_to_the_equilibrium_the_balls_say_unknown_and_the_exact_decision_decides():
     """The balls are not integrated (the digits it would need are said); the verdict is Kimura's, exactly."""
-    m = monodromy("2", "1", "1/1000", "1/1000", digits=20)
+    m = monodromy("2", "1", "1/1000", "1/1000", dps=20)
     assert m.matrices == {} and m.radius == math.inf
     assert "working digits" in m.certificates[0][0] and m.certificates[0][1] == "unknown"
     assert m.verdict == "SO(3,C)" and m.liouvillian is False
@@ -190,10 +190,10 @@ def test_too_close_to_the_equilibrium_the_balls_say_unknown_and_the_exact_decisi
 
 def test_the_mirror_axis_i23_zero_through_eq_lina():
     """eq:lina (I11 <-> I22, I13 <-> I23): p^2 = I11 (I22 - I11)/I13^2 on I23 = 0."""
-    odd = monodromy(1, 2, -1, 0, digits=20)                 # p = 1
+    odd = monodromy(1, 2, -1, 0, dps=20)                 # p = 1
     assert odd.verdict == "reducible" and odd.liouvillian is True
     assert _contains(odd.matrices["x=i"], I3) and _contains(odd.matrices["x=-i"], I3)
-    even = monodromy(1, 2, "-1/2", 0, digits=20)            # p = 2
+    even = monodromy(1, 2, "-1/2", 0, dps=20)            # p = 2
     assert even.verdict == "SO(3,C)" and (even.matrices["x=i"].trace() - 3).contains(0)
 
 
@@ -212,11 +212,11 @@ def test_odd_p_beyond_the_certified_range_balls_undecided_exact_decision_reducib
             return getattr(real, name)
 
     monkeypatch.setattr(validated, "gf", Formulas())
-    m = monodromy(2, 1, 0, "-1/3", digits=20)
+    m = monodromy(2, 1, 0, "-1/3", dps=20)
     assert m.verdict == "reducible" and m.liouvillian is True
     assert any(outcome == "pass" and "exactly" in claim for claim, outcome, _ in m.certificates)
     assert _contains(m.matrices["x=i"], I3)                # consistent with p = 3, but not a proof
     assert any(outcome == "unknown" and "beyond the certified range p <= 1" in detail
                for _, outcome, detail in m.certificates)
     monkeypatch.undo()
-    assert monodromy(2, 1, 0, "-1/3", digits=20).verdict == "reducible"
+    assert monodromy(2, 1, 0, "-1/3", dps=20).verdict == "reducible"

@@ -187,11 +187,11 @@ def test_build_refuses_foreign_out_before_any_work(tmp_path):
 
 def test_simulator_refuses_foreign_out_before_any_work(tmp_path, monkeypatch):
     import suslov.simulator.cli
-    from suslov.simulator.cli import main
+    from suslov.cli import main
 
     mine = tmp_path / "mine"
     before = user_directory(mine)
-    monkeypatch.setattr(suslov.simulator.cli, "execute", lambda *a, **k: pytest.fail("computed before refusing"))
+    monkeypatch.setattr(suslov.simulator.cli, "simulate", lambda *a, **k: pytest.fail("computed before refusing"))
     assert main(["simulate", str(ROOT / "scenes" / "fig1_omega.toml"), "--out", str(mine), "--quiet"]) == 2
     assert snapshot(mine) == before
 

@@ -11,7 +11,7 @@ import pytest
 
 import generated.suslov_formulas as gf
 from suslov.simulator import engine, integrate, taylor
-from suslov.simulator.cli import main
+from suslov.cli import main
 from suslov.simulator.engine import execute
 from suslov.simulator.planner import make_plan
 from suslov.simulator.scene import SceneError, load_scene
@@ -95,7 +95,7 @@ def test_general_body_angle_is_the_closed_form_and_integrates_nothing(tmp_path, 
     assert [e["step"] for e in run.executed] == ["angle_general_closed_form"]
     result = run.results["scattering_angle"]
     assert result["method"].startswith("closed form of every body") and 0 < result["error_estimate"] < 1e-12
-    ball = scattering_angle_enclosure(*run.plan.body.entries, digits=20, method="integration").angle
+    ball = scattering_angle_enclosure(*run.plan.body.entries, dps=20, method="integration").angle
     assert abs(result["radians"] - float(ball.mid())) < 1e-12
 
 
@@ -114,7 +114,7 @@ def test_general_body_is_integrated(tmp_path, monkeypatch, method, module, funct
     assert "scattering_angle" not in run.results
     result = run.results["scattering_angle_integrated"]
     assert result["error_estimate"] < 1e-10
-    ball = scattering_angle_enclosure(*run.plan.body.entries, digits=20, method="integration").angle
+    ball = scattering_angle_enclosure(*run.plan.body.entries, dps=20, method="integration").angle
     assert abs(result["radians"] - float(ball.mid())) < 1e-10
 
 
@@ -230,7 +230,7 @@ def test_refuses_to_overwrite_foreign_directory(tmp_path):
 
 def test_explain_prints_plan_without_running(tmp_path, monkeypatch, capsys):
     import suslov.simulator.cli
-    forbid(monkeypatch, (suslov.simulator.cli, "execute"), (suslov.simulator.cli, "write_outputs"))
+    forbid(monkeypatch, (suslov.simulator.cli, "simulate"))
     assert main(["simulate", str(SCENES[0]), "--explain"]) == 0
     assert "omega" in capsys.readouterr().out
 

@@ -16,7 +16,7 @@ import pytest
 import generated.suslov_formulas as gf
 from suslov import executor
 from suslov.simulator import sweep
-from suslov.simulator.cli import main
+from suslov.cli import main
 from suslov.simulator.scene import SceneError, load_scene
 from suslov.validated import scattering_angle_enclosure
 
@@ -87,7 +87,7 @@ def test_sweep_angles_match_independent_enclosures():
             for _ in range(3)]
     for row, result in zip(rows, sweep.evaluate_chunk((options, rows))):
         body = sweep.point_body(dict(zip(options["columns"], row)), "tensor")
-        ball = scattering_angle_enclosure(*body.entries, digits=30, method="integration").angle
+        ball = scattering_angle_enclosure(*body.entries, dps=30, method="integration").angle
         assert float(ball.rad()) < 1e-28
         assert abs(result["scattering_angle"] - float(ball.mid())) < 1e-12
 
@@ -329,6 +329,6 @@ def test_galois_group_effect_maps_the_verdict(tmp_path):
     # I13 = 0, I23 = -0.2 in the paper's frame after det I = 1 normalisation: whatever p is, the row agrees
     # with the API on the same tensor
     body = sweep.point_body({"I11": 2.0, "I22": 1.0, "I33": 1.5, "I12": 0.0, "I13": 0.0, "I23": -0.2}, "tensor")
-    expected = {"SO(3,C)": 1.0, "reducible": 0.0}.get(monodromy(*body.entries, digits=20).verdict)
+    expected = {"SO(3,C)": 1.0, "reducible": 0.0}.get(monodromy(*body.entries, dps=20).verdict)
     got = rows[(0.0, -0.2)][0]
     assert (expected is None and got != got) or got == expected

@@ -21,7 +21,7 @@ GENERAL = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]
 
 @pytest.fixture(scope="module")
 def general_enclosure():
-    return scattering_angle_enclosure(*make_body(GENERAL).entries, digits=20, method="integration")
+    return scattering_angle_enclosure(*make_body(GENERAL).entries, dps=20, method="integration")
 
 
 @pytest.mark.parametrize("p, d", [(2.5, 0.7), (3, 0.5), (7.5, 0.2), (0.3, 3.0), (11.2, 0.05)])

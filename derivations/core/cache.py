@@ -14,8 +14,8 @@ Two levels, both keyed by what the result depends on and nothing else:
 Per-p entries live in the executor's ``ChunkStore`` (pickles with the key and a SHA-256 of the
 payload in a header; whole trees carry a manifest of SHA-256 per file): a truncated, edited or
 foreign entry fails the check and is recomputed, never trusted (and never unpickled before its
-checksum matched).  Location: ``$SUSLOV_CACHE_DIR``, else ``$XDG_CACHE_HOME/suslov-certified``,
-else ``~/.cache/suslov-certified``; deleting it is always safe.  ``--no-cache`` bypasses it.
+checksum matched).  Location: ``$SUSLOV_CACHE_DIR``, else the platform's per-user cache directory
+(``platformdirs``: ``$XDG_CACHE_HOME/suslov-certified`` or ``~/.cache/suslov-certified`` on Linux); deleting it is always safe.  ``--no-cache`` bypasses it.
 Which results came from the cache is recorded in the volatile ``cache_report.json``: the
 committed outputs are byte-identical cold or warm.
 """
@@ -25,26 +25,30 @@ import ast
 import functools
 import hashlib
 import importlib.metadata
+import importlib.util
 import json
 import os
 import platform
 import shutil
 from pathlib import Path
 
+import platformdirs
+
 from suslov.executor import TMP_PREFIX
 from suslov.outdir import make_dir, remove_stale
 
-ROOT = Path(__file__).resolve().parents[2]   # the repository (derivations/<layer>/this file)
-PACKAGES = ("derivations", "suslov")
-LIBRARIES = ("sympy", "mpmath", "python-flint", "numpy", "jinja2", "scipy", "heyoka")
-BUILD_SOURCES = ("derivations", "suslov", "templates", "build_formulas.py")
+ROOT = Path(__file__).resolve().parents[2]   # the build tree: the checkout, or suslov/build/ in a wheel
+SUSLOV_PARENT = Path(importlib.util.find_spec("suslov").origin).resolve().parents[1]   # the checkout, or site-packages
+PACKAGES = {"derivations": ROOT, "suslov": SUSLOV_PARENT}
+LIBRARIES = ("sympy", "symengine", "mpmath", "python-flint", "numpy", "jinja2", "scipy", "heyoka")
+BUILD_SOURCES = ((ROOT, "derivations"), (SUSLOV_PARENT, "suslov"), (ROOT, "templates"), (ROOT, "build_formulas.py"))
 
 
 def cache_root() -> Path:
+    """``$SUSLOV_CACHE_DIR``, else the platform's per-user cache directory (platformdirs)."""
     if os.environ.get("SUSLOV_CACHE_DIR"):
         return Path(os.environ["SUSLOV_CACHE_DIR"])
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "suslov-certified"
+    return Path(platformdirs.user_cache_dir("suslov-certified", appauthor=False))
 
 
 @functools.cache
@@ -62,7 +66,7 @@ def _module_file(name: str) -> Path | None:
     parts = name.split(".")
     if parts[0] not in PACKAGES:
         return None
-    path = ROOT.joinpath(*parts)
+    path = PACKAGES[parts[0]].joinpath(*parts)
     for candidate in (path.with_suffix(".py"), path / "__init__.py"):
         if candidate.is_file():
             return candidate
@@ -112,12 +116,12 @@ def per_p_key(work, value) -> str:
 
 def build_key(options, only) -> str:
     digest = hashlib.sha256()
-    for source in BUILD_SOURCES:
-        path = ROOT / source
+    for base, source in BUILD_SOURCES:
+        path = base / source
         files = sorted(p for p in path.rglob("*") if p.is_file() and "__pycache__" not in p.parts) \
-            if path.is_dir() else [path]
+            if path.is_dir() else [path] if path.is_file() else []   # a wheel has no build_formulas.py
         for f in files:
-            digest.update(str(f.relative_to(ROOT)).encode() + b"\0" + f.read_bytes() + b"\0")
+            digest.update(str(f.relative_to(base)).encode() + b"\0" + f.read_bytes() + b"\0")
     digest.update(json.dumps([options.pmax, sorted(only or []), library_versions()]).encode())
     return digest.hexdigest()[:40]
 

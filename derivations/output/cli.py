@@ -37,6 +37,7 @@ from derivations.output.pipeline import (
 )
 from derivations.registry import DERIVATIONS
 from suslov.executor import SchedulerError, check_reachable, scheduler_address
+from suslov.interrupts import listen_for_interrupts
 from suslov.outdir import OutputRefused
 
 
@@ -332,6 +333,7 @@ def _write_and_cache(build, target: Path, key, quiet: bool) -> int:
 
 def run(argv: list[str] | None = None) -> int:
     """:func:`main`, with Ctrl-C reported in one line (the output is swapped in whole or not at all)."""
+    listen_for_interrupts()
     try:
         return main(argv)
     except KeyboardInterrupt:

@@ -56,9 +56,9 @@ SECTIONS = [
             '_angular.omega(_omega, t, p, d)'),
         PublicFunction(
             'omega_mp',
-            't, p, d, dps: int = 50',
+            't, p, d, dps: int | None = None',
             'tuple',
-            r"""mpmath twin of :func:`omega` at ``dps`` significant digits (scalars).
+            r"""mpmath twin of :func:`omega` at ``dps`` significant digits (default ``mpmath.mp.dps``; scalars).
 
     Arguments: int, float, ``Fraction``, ``mpmath.mpf`` or a decimal string (``"0.1"`` is
     exactly one tenth).  Returns a pair of ``mpmath.mpf`` that print their ``dps`` digits
@@ -98,9 +98,10 @@ SECTIONS = [
             '_angular.omega_general(_omega_general, t, I11, I22, I13, I23, branch)'),
         PublicFunction(
             'omega_general_mp',
-            't, I11, I22, I13, I23, branch: int = 1, dps: int = 50',
+            't, I11, I22, I13, I23, branch: int = 1, dps: int | None = None',
             'tuple',
-            r"""mpmath twin of :func:`omega_general` (scalars; strings for exact decimals), at ``dps`` digits.""",
+            r"""mpmath twin of :func:`omega_general` (scalars; strings for exact decimals), at ``dps`` digits
+    (default: ``mpmath.mp.dps``).""",
             '_angular.omega_general_mp(_omega_general, t, I11, I22, I13, I23, branch, dps)'),
     ]),
     ('first integrals (shared recipe)', [
@@ -151,9 +152,10 @@ SECTIONS = [
             '_integrals.first_integral(_integral_core, INTEGRAL_PS, p, d, omega1, omega2, gamma1, gamma2, gamma3)'),
         PublicFunction(
             'first_integral_mp',
-            'p: int, d, omega1, omega2, gamma1, gamma2, gamma3, dps: int = 50',
+            'p: int, d, omega1, omega2, gamma1, gamma2, gamma3, dps: int | None = None',
             '',
-            r"""mpmath twin of :func:`first_integral` (scalars) at ``dps`` digits; coefficients exact in d.
+            r"""mpmath twin of :func:`first_integral` (scalars) at ``dps`` digits (default: ``mpmath.mp.dps``);
+    coefficients exact in d.
 
     >>> mpmath.nstr(first_integral_mp(1, "0.5", 1, 2, "0.6", "0.8", 0, dps=30), 25)   # w1 g1 + w2 g2/(d^2+1)
     '1.88'
@@ -193,7 +195,7 @@ SECTIONS = [
             '_basis.gamma_basis(_basis_core, _BASIS_SIGMA, BASIS_PS, t, p, d)'),
         PublicFunction(
             'gamma_basis_mp',
-            't, p: int, d, dps: int = 50',
+            't, p: int, d, dps: int | None = None',
             '',
             r"""mpmath twin of :func:`gamma_basis` for scalar ``t`` and ``d``: a 3x3 ``mpmath.matrix`` (rows gamma^(i)).
 
@@ -237,9 +239,10 @@ SECTIONS = [
             '_angle.scattering_angle(_scattering_angle, p, d)'),
         PublicFunction(
             'scattering_angle_mp',
-            'p, d, dps: int = 50',
+            'p, d, dps: int | None = None',
             '',
-            r"""mpmath twin of :func:`scattering_angle` (scalars; strings for exact decimals) at ``dps`` digits.
+            r"""mpmath twin of :func:`scattering_angle` (scalars; strings for exact decimals) at ``dps`` digits
+    (default: ``mpmath.mp.dps``).
 
     >>> mpmath.nstr(scattering_angle_mp(1, "0.7", dps=30), 25)   # odd p: pi
     '3.141592653589793238462643'
@@ -247,11 +250,12 @@ SECTIONS = [
             '_angle.scattering_angle_mp(_scattering_angle, p, d, dps)'),
         PublicFunction(
             'scattering_angle_ball',
-            'p, d, prec: int = 128',
+            'p, d, dps: int | None = None, prec: int | None = None',
             '',
             r"""Ball enclosure (python-flint ``arb``) of the closed form of :func:`scattering_angle`.
 
-    The same emitted expression evaluated in ball arithmetic at ``prec`` bits: the ball contains
+    The same emitted expression evaluated in ball arithmetic at ``prec`` bits or ``dps`` digits (default:
+    ``mpmath.mp.prec``, as the mp twins follow ``mpmath.mp.dps``): the ball contains
     the exact value of Theorem 5.2's angle at the given p, d.  ``p``, ``d``: ints, Fractions or
     decimal strings (exact), or floats (their binary value); scalars.  For the angle of a body
     whose p, d are not known exactly, or of a general body (I13 != 0), see
@@ -261,7 +265,7 @@ SECTIONS = [
     >>> ball.rad() < 1e-28, round(float(ball.mid()), 12)
     (True, 2.968844459491)
     """,
-            '_angle.scattering_angle_ball(_scattering_angle, p, d, prec)'),
+            '_angle.scattering_angle_ball(_scattering_angle, p, d, dps, prec)'),
     ]),
     ('scattering angle of every body (closed form)', [
         PublicFunction(
@@ -299,18 +303,18 @@ SECTIONS = [
             '_general.general_scattering_angle_mp(_gauss_invariants, _general_angle, I11, I22, I13, I23, dps)'),
         PublicFunction(
             'general_scattering_angle_ball',
-            'I11, I22, I13, I23, prec: int | None = None',
+            'I11, I22, I13, I23, dps: int | None = None, prec: int | None = None',
             '',
             r"""Ball enclosure (python-flint ``arb``) of the closed form of :func:`general_scattering_angle`
-    at ``prec`` bits (default: ``flint.ctx.prec``): ints, Fractions or decimal strings are exact,
-    floats their binary value.  The validated-integration route that checks it is
+    at ``prec`` bits or ``dps`` digits (default: ``mpmath.mp.prec``): ints, Fractions or decimal strings
+    are exact, floats their binary value.  The validated-integration route that checks it is
     :func:`suslov.validated.scattering_angle_enclosure` with ``method="integration"``.
 
     >>> ball = general_scattering_angle_ball("5/4", 1, "3/10", "-1/2", prec=1000)
     >>> ball.rad() < 1e-290, round(float(ball.mid()), 12)
     (True, 2.9591441765)
     """,
-            '_general.general_scattering_angle_ball(_gauss_invariants, _general_angle, I11, I22, I13, I23, prec)'),
+            '_general.general_scattering_angle_ball(_gauss_invariants, _general_angle, I11, I22, I13, I23, dps, prec)'),
     ]),
     ('numeric inertia tensors', [
         PublicFunction(

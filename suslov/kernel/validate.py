@@ -14,7 +14,8 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 
-__all__ = ["real_scalar", "real_array", "odd_p", "mp_real", "rational", "precision", "DPS_RANGE", "PREC_RANGE"]
+__all__ = ["real_scalar", "real_array", "odd_p", "mp_real", "rational", "precision", "mp_dps", "ball_prec",
+           "renamed_keywords", "DPS_RANGE", "PREC_RANGE"]
 
 # documented limits of the precision arguments (digits for the mpmath twins, bits for the balls)
 DPS_RANGE = (1, 10_000)
@@ -83,6 +84,47 @@ def precision(name: str, value, limits: tuple[int, int] = DPS_RANGE, unit: str =
             or not low <= int(value) <= high:
         raise ValueError(f"{name}={value!r}: must be an integer number of {unit} in [{low}, {high}]")
     return int(value)
+
+
+def mp_dps(dps) -> int:
+    """The decimal digits of an mpmath route: ``dps`` if given, else ``mpmath.mp.dps`` (mpmath's habit).
+
+    >>> with mpmath.workdps(40):
+    ...     mp_dps(None), mp_dps(25)
+    (40, 25)
+    """
+    return mpmath.mp.dps if dps is None else precision("dps", dps)
+
+
+def ball_prec(dps=None, prec=None) -> int:
+    """The bits of a ball route: ``prec`` (bits, python-flint's unit) or ``dps`` (decimal digits) if given,
+    else ``mpmath.mp.prec`` (so ``mp.dps = 40`` moves the balls as it moves the mp twins).
+
+    >>> ball_prec(), ball_prec(dps=30), ball_prec(prec=200)
+    (53, 100, 200)
+    """
+    if dps is not None and prec is not None:
+        raise ValueError(f"dps={dps!r}, prec={prec!r}: give one precision, decimal digits (dps) or bits (prec)")
+    if prec is not None:
+        return precision("prec", prec, PREC_RANGE, "bits")
+    if dps is not None:
+        return max(PREC_RANGE[0], math.ceil(precision("dps", dps) * math.log2(10)))
+    return mpmath.mp.prec
+
+
+def renamed_keywords(function: str, given: dict, **renames: str) -> dict:
+    """Old keyword names still accepted for one release: ``given`` (a ``**kwargs``) mapped through
+    ``renames`` (old -> new) with a ``DeprecationWarning`` each; any other name is a ``TypeError``."""
+    import warnings
+
+    out = {}
+    for old, value in given.items():
+        if old not in renames:
+            raise TypeError(f"{function}() got an unexpected keyword argument {old!r}")
+        warnings.warn(f"{function}({old}=...) is deprecated; use {renames[old]}= (mpmath's convention: "
+                      f"{renames[old]}=None follows mpmath.mp.dps)", DeprecationWarning, stacklevel=3)
+        out[renames[old]] = value
+    return out
 
 
 def mp_real(name: str, value, *, positive: bool = False, nonzero: bool = False):

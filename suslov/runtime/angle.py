@@ -15,7 +15,7 @@ from suslov.kernel import phase
 from suslov.kernel.contexts import ARB, FLOAT, MP
 from suslov.kernel.display import Ball, MPValue
 from suslov.kernel.enclosure import to_arb
-from suslov.kernel.validate import PREC_RANGE, mp_real, precision, real_array
+from suslov.kernel.validate import ball_prec, mp_dps, mp_real, real_array
 
 __all__ = ["scattering_angle", "scattering_angle_mp", "scattering_angle_ball"]
 
@@ -29,7 +29,7 @@ def scattering_angle(emitted, p, d) -> np.ndarray:
 
 
 def scattering_angle_mp(emitted, p, d, dps):
-    dps = precision("dps", dps)
+    dps = mp_dps(dps)
     with mpmath.workdps(dps + 10):
         p, d = mp_real("p", p), mp_real("d", d, positive=True)
         s, c = abs(mpmath.sinpi(p / 2)), abs(mpmath.cospi(p / 2))
@@ -38,8 +38,8 @@ def scattering_angle_mp(emitted, p, d, dps):
         return MPValue(+out, dps)
 
 
-def scattering_angle_ball(emitted, p, d, prec) -> Ball:
-    prec = precision("prec", prec, PREC_RANGE, "bits")
+def scattering_angle_ball(emitted, p, d, dps, prec) -> Ball:
+    prec = ball_prec(dps, prec)
     saved = flint.ctx.prec
     flint.ctx.prec = prec + 20
     try:

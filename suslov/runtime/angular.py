@@ -11,7 +11,7 @@ import numpy as np
 
 from suslov.kernel.contexts import FLOAT, MP
 from suslov.kernel.display import MPValue
-from suslov.kernel.validate import mp_real, precision, real_array
+from suslov.kernel.validate import mp_dps, mp_real, real_array
 
 __all__ = ["full", "tensor_arrays", "branch_sign", "omega", "omega_mp", "omega_general", "omega_general_mp"]
 
@@ -48,7 +48,7 @@ def omega(emitted, t, p, d) -> tuple[np.ndarray, np.ndarray]:
 
 
 def omega_mp(emitted, t, p, d, dps) -> tuple:
-    dps = precision("dps", dps)
+    dps = mp_dps(dps)
     with mpmath.workdps(dps):
         t, p, d = mp_real("t", t), mp_real("p", p, nonzero=True), mp_real("d", d, positive=True)
         w1, w2 = emitted(MP, t, p, d)
@@ -69,7 +69,7 @@ def omega_general(emitted, t, I11, I22, I13, I23, branch) -> tuple[np.ndarray, n
 
 
 def omega_general_mp(emitted, t, I11, I22, I13, I23, branch, dps) -> tuple:
-    dps = precision("dps", dps)
+    dps = mp_dps(dps)
     with mpmath.workdps(dps):
         t = mp_real("t", t)
         I11, I22 = mp_real("I11", I11, positive=True), mp_real("I22", I22, positive=True)

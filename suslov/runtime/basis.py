@@ -25,7 +25,7 @@ import numpy as np
 from suslov.kernel import fourier, phase, trig_series
 from suslov.kernel.contexts import FLOAT
 from suslov.kernel.lru import BoundedCache
-from suslov.kernel.validate import mp_real, odd_p, precision, real_array
+from suslov.kernel.validate import mp_dps, mp_real, odd_p, real_array
 from suslov.recipes.rings import AcbBasisRing
 
 from .integrals import CACHE_SIZE
@@ -171,7 +171,7 @@ def gamma_basis(core, sigma, ps, t, p, d) -> np.ndarray:
 
 def gamma_basis_mp(core, sigma, ps, t, p, d, dps):
     """The mpmath twin: a 3x3 ``mpmath.matrix`` at ``dps`` digits (scalars t, d)."""
-    dps = precision("dps", dps)
+    dps = mp_dps(dps)
     p = basis_p(p, ps)
     with mpmath.workdps(dps):
         t = mp_real("t", t)

@@ -21,7 +21,7 @@ from suslov.kernel import gauss_angle, phase
 from suslov.kernel.contexts import ARB, FLOAT, MP
 from suslov.kernel.display import Ball, MPValue
 from suslov.kernel.enclosure import to_arb
-from suslov.kernel.validate import PREC_RANGE, mp_real, precision, real_array
+from suslov.kernel.validate import ball_prec, mp_dps, mp_real, real_array
 
 __all__ = ["general_scattering_angle", "general_scattering_angle_mp", "general_scattering_angle_ball"]
 
@@ -57,7 +57,7 @@ def general_scattering_angle(invariants, emitted, I11, I22, I13, I23) -> np.ndar
 
 
 def general_scattering_angle_mp(invariants, emitted, I11, I22, I13, I23, dps=None):
-    dps = mpmath.mp.dps if dps is None else precision("dps", dps)
+    dps = mp_dps(dps)
     with mpmath.workdps(dps + 15):
         I11, I22 = mp_real("I11", I11, positive=True), mp_real("I22", I22, positive=True)
         I13, I23 = mp_real("I13", I13), mp_real("I23", I23)
@@ -67,8 +67,8 @@ def general_scattering_angle_mp(invariants, emitted, I11, I22, I13, I23, dps=Non
         return MPValue(+out, dps)
 
 
-def general_scattering_angle_ball(invariants, emitted, I11, I22, I13, I23, prec=None) -> Ball:
-    prec = flint.ctx.prec if prec is None else precision("prec", prec, PREC_RANGE, "bits")
+def general_scattering_angle_ball(invariants, emitted, I11, I22, I13, I23, dps=None, prec=None) -> Ball:
+    prec = ball_prec(dps, prec)
     saved = flint.ctx.prec
     flint.ctx.prec = prec + 30
     try:

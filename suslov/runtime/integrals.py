@@ -18,7 +18,7 @@ import numpy as np
 from suslov.kernel import horner
 from suslov.kernel.display import MPValue
 from suslov.kernel.lru import BoundedCache
-from suslov.kernel.validate import mp_real, odd_p, precision, rational, real_array
+from suslov.kernel.validate import mp_dps, mp_real, odd_p, rational, real_array
 from suslov.recipes.rings import IntegralRing, homogeneous_coefficients
 
 __all__ = ["CACHE_SIZE", "integral_p", "exact_coefficients", "float_coefficients", "first_integral_coefficients",
@@ -107,7 +107,7 @@ def first_integral(core, ps, p, d, omega1, omega2, gamma1, gamma2, gamma3) -> np
 
 
 def first_integral_mp(core, ps, p, d, omega1, omega2, gamma1, gamma2, gamma3, dps):
-    dps = precision("dps", dps)
+    dps = mp_dps(dps)
     p = integral_p(p, ps)
     exact = exact_coefficients(core, p, rational("d", d, positive=True))
     with mpmath.workdps(dps):

@@ -1,45 +1,33 @@
-"""Command line: ``suslov simulate SCENE.toml --out DIR [--explain] [--workers N] [--scheduler ADDRESS]``.
+"""``suslov simulate SCENE --out DIR [--explain] [--workers N] [--scheduler ADDRESS]``: a thin layer over
+``suslov.simulate`` (:mod:`suslov.simulator.api`).
 
-Also ``python -m suslov``.  A sweep scene (``[sweep]``) runs its points in chunks on local
-processes (``--workers``, default all cores) or on a dask.distributed cluster (``--scheduler
-tcp://host:port``, or the environment variable ``SUSLOV_SCHEDULER``); an interrupted sweep
-resumes from its finished chunks.
+The parser is :mod:`suslov.cli` (the ``suslov`` command, also ``python -m suslov``).  A sweep scene
+(``[sweep]``) runs its points in chunks on local processes (``--workers``, default all cores) or on a
+dask.distributed cluster (``--scheduler tcp://host:port``, or the environment variable
+``SUSLOV_SCHEDULER``); an interrupted sweep resumes from its finished chunks.
 
 Exit codes: 0 success, 2 bad input (scene file, output directory), 1 a
-computation failed.  Errors are one line naming the file, the field and the
+computation failed, 130 interrupted.  Errors are one line naming the file, the field and the
 reason; nothing is written to ``--out`` unless the whole scene succeeded.
 """
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
-from suslov.executor import SCHEDULER_ENV, SchedulerError, scheduler_address
+from suslov.executor import SchedulerError, scheduler_address
+from suslov.interrupts import listen_for_interrupts
 from suslov.outdir import OutputRefused
-from suslov.simulator.engine import execute, write_outputs
+from suslov.simulator.api import simulate
 from suslov.simulator.outputs import check_out
 from suslov.simulator.planner import make_plan
 from suslov.simulator.scene import SceneError, load_scene
-from suslov.simulator.sweep import LargeSweep, chunk_dir, plan_sweep, run_sweep
+from suslov.simulator.sweep import LargeSweep, chunk_dir, plan_sweep
 
 
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(
-        prog="suslov", description="Run declarative scene files (TOML) of the Suslov problem: one body or a sweep.",
-        epilog="Exit status: 0 success, 2 bad input (scene file, output directory, an unconfirmed large sweep), "
-               "1 a computation failed, 130 interrupted. Scene schema: scenes/README.md.")
-    sub = parser.add_subparsers(dest="command", required=True)
-    sim = sub.add_parser("simulate", help="run a scene file")
-    sim.add_argument("scene", help="scene file (TOML), see scenes/README.md")
-    sim.add_argument("--out", help="output directory (required unless --explain)")
-    sim.add_argument("--explain", action="store_true", help="print the plan and exit without computing")
-    sim.add_argument("--quiet", action="store_true", help="no progress lines")
-    sim.add_argument("--workers", type=int, help="sweeps: local worker processes (default: all cores)")
-    sim.add_argument("--yes", action="store_true",
-                     help="sweeps: run even when above 200000 points or an hour of estimated work")
-    sim.add_argument("--scheduler", help=f"sweeps: dask.distributed scheduler address (default: ${SCHEDULER_ENV})")
-    args = parser.parse_args(argv)
+def simulate_command(args) -> int:
+    """Run ``suslov simulate`` with the parsed ``args`` (:func:`suslov.cli.parser`)."""
+    listen_for_interrupts()
     if args.workers is not None and args.workers < 1:
         print(f"suslov: error: --workers {args.workers}: must be at least 1", file=sys.stderr)
         return 2
@@ -67,8 +55,12 @@ def main(argv=None) -> int:
         print(f"suslov: error: --out {exc}", file=sys.stderr)
         return 2
     files = []
-    status = _guarded(f"scene {scene.path}", lambda: files.extend(write_outputs(execute(plan, progress), args.out,
-                                                                             progress)))
+    try:
+        status = _guarded(f"scene {scene.path}",
+                          lambda: files.extend(simulate(scene, out=args.out, progress=progress).files))
+    except KeyboardInterrupt:
+        print("suslov: interrupted; nothing was written", file=sys.stderr)
+        return 130
     if status == 0 and progress:
         progress(f"wrote {len(files)} files to {args.out}")
     return status
@@ -101,13 +93,14 @@ def _sweep(scene, args, progress) -> int:
     outcome = []
     try:
         status = _guarded(f"sweep {scene.path}", lambda: outcome.append(
-            run_sweep(scene, args.out, scheduler=scheduler, workers=args.workers, progress=progress,
-                      confirmed=args.yes)))
+            simulate(scene, out=args.out, scheduler=scheduler, workers=args.workers, progress=progress,
+                     confirmed=args.yes)))
     except KeyboardInterrupt:
         print(f"suslov: interrupted: {_kept(chunk_dir(Path(args.out)))}", file=sys.stderr)
         return 130
     if status == 0 and progress:
-        progress(f"sweep of {len(scene.sweep)} points done in {outcome[0][2]:.1f} s; wrote {args.out}")
+        progress(f"sweep of {len(scene.sweep)} points done in {outcome[0].steps[0]['seconds']:.1f} s; "
+                 f"wrote {args.out}")
     return status
 
 
@@ -118,6 +111,3 @@ def _kept(chunks: Path) -> str:
         return "no chunk had finished; nothing was kept"
     return f"{kept} finished chunk{'s' if kept > 1 else ''} kept in {chunks}; run the same command again to resume"
 
-
-if __name__ == "__main__":
-    sys.exit(main())

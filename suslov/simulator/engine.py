@@ -140,7 +140,7 @@ def step_angle_enclosure(run: Run):
         scattering_angle_enclosure,  # python-flint balls only when asked for
     )
 
-    enclosure = scattering_angle_enclosure(*run.plan.body.entries, digits=20)
+    enclosure = scattering_angle_enclosure(*run.plan.body.entries, dps=20)
     run.results["scattering_angle_enclosure"] = {
         "ball": enclosure.angle.str(25), "midpoint": float(enclosure.angle.mid()),
         "radius": float(enclosure.angle.rad()),
@@ -151,7 +151,7 @@ def step_angle_enclosure(run: Run):
 def step_galois_monodromy(run: Run):
     from suslov.validated import monodromy  # python-flint balls only when asked for
 
-    result = monodromy(*run.plan.body.entries, digits=GALOIS_DIGITS)
+    result = monodromy(*run.plan.body.entries, dps=GALOIS_DIGITS)
     run.results["galois_group"] = {"verdict": result.verdict, "liouvillian": result.liouvillian,
                                    "certificates": [{"claim": c, "outcome": o, "detail": d}
                                                     for c, o, d in result.certificates],

@@ -12,7 +12,7 @@ from __future__ import annotations
 from contextlib import contextmanager
 from pathlib import Path
 
-from suslov import outdir
+import suslov.outdir as outdir
 
 REPORT = "report.md"
 TOOL = "suslov"

@@ -262,6 +262,22 @@ def load_scene(path) -> Scene:
         raise SceneError(path, "file", "not found") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise SceneError(path, "file", f"not valid TOML ({exc})") from None
+    return parse_scene(data, path)
+
+
+def parse_scene(data: dict, path=None) -> Scene:
+    """Validate a scene given as a dict (the TOML file's tables as nested dicts); raises :class:`SceneError`.
+
+    ``path`` names the scene in errors (default ``<dict>``) and gives its default name.
+
+    >>> scene = parse_scene({"body": {"p": 2, "d": 0.5}, "motion": {"time": [-5, 5], "samples": 11},
+    ...                      "effects": {"compute": ["scattering_angle"]}})
+    >>> scene.effects, scene.name
+    (['scattering_angle'], 'scene')
+    """
+    path = Path("<dict>") if path is None else Path(path)
+    if not isinstance(data, dict):
+        raise SceneError(path, "scene", f"{type(data).__name__}: must be a dict of tables (body, motion, ...)")
     top = sorted(set(data) - {"name", "title", "description", "body", "sweep", "motion", "effects", "numerics"})
     if top:
         raise SceneError(path, top[0], "unknown field; allowed: name, title, description, [body] or [sweep], "
@@ -278,6 +294,7 @@ def load_scene(path) -> Scene:
     compute, figures, formats = _effects(path, _table(path, data, "effects", ("compute", "figures", "figures_format")),
                                          body, sweep)
     rtol, atol, method = _numerics(path, _table(path, data, "numerics", ("rtol", "atol", "method")))
-    return Scene(path, data.get("name", path.stem), data.get("description", ""), body or {"kind": "sweep"}, window,
+    default_name = "scene" if path.name == "<dict>" else path.stem
+    return Scene(path, data.get("name", default_name), data.get("description", ""), body or {"kind": "sweep"}, window,
                  samples, energy, initial, speed, list(dict.fromkeys(compute)), list(dict.fromkeys(figures)), rtol,
                  atol, method, data.get("title", ""), tuple(dict.fromkeys(formats)), sweep)

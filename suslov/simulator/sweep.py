@@ -37,7 +37,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from suslov import executor
+import suslov.executor as executor
 from suslov.loader import gf
 from suslov.simulator.body import make_body
 from suslov.simulator.engine import general_angle, numeric_angle
@@ -183,7 +183,7 @@ def evaluate_point(point: dict, options: dict) -> dict:
                     "galois_group_method": f"{result.group} (exact: Kimura's theorem, entries as their binary values)"}
         if "angle_enclosure" in steps:
             from suslov.validated import scattering_angle_enclosure
-            ball = scattering_angle_enclosure(*body.entries, digits=ENCLOSURE_DIGITS).angle
+            ball = scattering_angle_enclosure(*body.entries, dps=ENCLOSURE_DIGITS).angle
             row |= {"scattering_angle_enclosure": float(ball.mid()),
                     "scattering_angle_enclosure_error": float(ball.rad()),
                     "scattering_angle_enclosure_method": "closed form of every body in ball arithmetic (rigorous)"}
@@ -279,19 +279,29 @@ def run_sweep(scene, out, *, scheduler: str | None = None, workers: int | None =
     out = Path(out)
     check_out(out)
     plan = plan_sweep(scene, workers, scheduler)
-    if not confirmed and (len(scene.sweep) > CONFIRM_ABOVE or plan.estimate() > CONFIRM_SECONDS):
-        raise LargeSweep(f"{scene.path}: {len(scene.sweep)} points, estimated {plan.estimate():.0f} s on "
-                         f"{plan.workers} worker(s): above {CONFIRM_ABOVE} points or {CONFIRM_SECONDS:.0f} s, "
-                         "so it runs only when confirmed: add --yes (suslov simulate ... --yes)")
-    if progress:
-        progress(f"{len(scene.sweep)} points in {plan.chunks} chunks; estimated {plan.estimate():.1f} s")
-    tasks, keys = chunk_tasks(scene, plan.chunk)
-    store = executor.ChunkStore(chunk_dir(out))
-    start = time.perf_counter()
-    results, computed = executor.run_chunks(evaluate_chunk, tasks, keys, store=store, scheduler=scheduler,
-                                            workers=plan.workers, progress=progress)
-    seconds = time.perf_counter() - start
-    table = assemble(scene, [row for chunk in results for row in chunk])
+    check_size(scene, plan, confirmed)
+    table, seconds, computed = compute_sweep(scene, plan, executor.ChunkStore(chunk_dir(out)), progress)
     write_sweep_outputs(scene, plan, table, out, seconds, computed, progress)
     shutil.rmtree(chunk_dir(out), ignore_errors=True)
     return table, plan, seconds, computed
+
+
+def check_size(scene, plan: SweepPlan, confirmed: bool) -> None:
+    """:class:`LargeSweep` unless ``confirmed`` when the sweep is above ``CONFIRM_ABOVE`` points or
+    ``CONFIRM_SECONDS`` of estimated work."""
+    if not confirmed and (len(scene.sweep) > CONFIRM_ABOVE or plan.estimate() > CONFIRM_SECONDS):
+        raise LargeSweep(f"{scene.path}: {len(scene.sweep)} points, estimated {plan.estimate():.0f} s on "
+                         f"{plan.workers} worker(s): above {CONFIRM_ABOVE} points or {CONFIRM_SECONDS:.0f} s, "
+                         "so it runs only when confirmed: add --yes (suslov simulate ... --yes; "
+                         "suslov.simulate(..., confirmed=True))")
+
+
+def compute_sweep(scene, plan: SweepPlan, store=None, progress=None) -> tuple[dict, float, int]:
+    """Every point of ``plan`` (chunks ``store`` holds are not recomputed): (table, seconds, chunks computed)."""
+    if progress:
+        progress(f"{len(scene.sweep)} points in {plan.chunks} chunks; estimated {plan.estimate():.1f} s")
+    tasks, keys = chunk_tasks(scene, plan.chunk)
+    start = time.perf_counter()
+    results, computed = executor.run_chunks(evaluate_chunk, tasks, keys, store=store, scheduler=plan.scheduler,
+                                            workers=plan.workers, progress=progress)
+    return assemble(scene, [row for chunk in results for row in chunk]), time.perf_counter() - start, computed

@@ -75,6 +75,11 @@ def _first_energy(scene, values: np.ndarray) -> np.ndarray:
 
 
 def draw_map(scene, table: dict, staging, formats) -> list[str]:
+    return _save(map_figure(scene, table), "map", staging, formats)
+
+
+def map_figure(scene, table: dict):
+    """The ``map`` figure (a scalar effect over the sweep's two varying fields), not saved."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -116,10 +121,15 @@ def draw_map(scene, table: dict, staging, formats) -> list[str]:
                               else ""), fontsize=10)
     fig.suptitle(scene.title or scene.name, fontsize=11)
     fig.tight_layout()
-    return _save(fig, "map", staging, formats)
+    return fig
 
 
 def draw_histogram(scene, table: dict, staging, formats) -> list[str]:
+    return _save(histogram_figure(scene, table), "histogram", staging, formats)
+
+
+def histogram_figure(scene, table: dict):
+    """The ``histogram`` figure of every scalar effect of the sweep, not saved."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -136,7 +146,12 @@ def draw_histogram(scene, table: dict, staging, formats) -> list[str]:
         ax.legend()
     fig.suptitle(scene.title or scene.name, fontsize=11)
     fig.tight_layout()
-    return _save(fig, "histogram", staging, formats)
+    return fig
+
+
+def sweep_figure(name: str, scene, table: dict):
+    """Figure ``name`` (``map`` or ``histogram``) of a sweep's table, not saved (``suslov.simulate(...).plot()``)."""
+    return map_figure(scene, table) if name == "map" else histogram_figure(scene, table)
 
 
 def _save(fig, name, staging, formats) -> list[str]:
