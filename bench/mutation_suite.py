@@ -114,14 +114,15 @@ MUTANTS = [
      "if False:", "test:tests/test_outdir.py"),
     ("outdir-journal-no-recovery", "suslov/outdir.py", "            if staging.is_dir():\n                os.rename(staging, target)",
      "            if False:\n                os.rename(staging, target)", "test:tests/test_outdir.py"),
-    ("executor-no-parent-watch", "suslov/executor.py", "threading.Thread(target=watch, name=\"parent-watch\", daemon=True).start()",
-     "pass", "test:tests/test_outdir.py::test_workers_die_with_their_parent"),
+    ("executor-no-parent-watch", "suslov/executor.py",
+     "    die_with_parent()\n\n    def watch():\n        while os.getppid() == parent:",
+     "    def watch():\n        while True:", "test:tests/test_outdir.py::test_workers_die_with_their_parent"),
 ]
 
 # mutants with no observable effect (not run), and why
 EQUIVALENT = [
-    ("lru-eviction-order", "suslov/kernel/lru.py: evicting the newest instead of the oldest entry changes only which "
-     "cached tables are recomputed, never a value"),
+    ("executor-one-death-signal", "suslov/executor.py: removing either the kernel's PR_SET_PDEATHSIG or the watching "
+     "thread alone leaves the other to end orphaned workers (the two are redundant on Linux by design)"),
     ("horner-block-size", "suslov/kernel/horner.py: block = 4096 for 8192 changes only the memory per pass"),
 ]
 

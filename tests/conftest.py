@@ -6,6 +6,10 @@ answered from a cache keyed by unchanged sources.  tests/test_cache.py turns it 
 temporary cache directory.
 """
 import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
 
 import pytest
 
@@ -18,6 +22,32 @@ from derivations.output.pipeline import derive
 @pytest.fixture(scope="session")
 def default_build():
     return derive(BuildOptions())
+
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def working_tree(target: Path) -> None:
+    """Copy the files git tracks or would track (the working tree, uncommitted edits included) to ``target``."""
+    files = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"], cwd=ROOT,
+                           capture_output=True, text=True, check=True).stdout.split("\0")
+    for name in filter(None, files):
+        if (ROOT / name).is_file():
+            (target / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(ROOT / name, target / name)
+
+
+@pytest.fixture(scope="session")
+def wheel(tmp_path_factory):
+    """The project's wheel, built once per session from a copy of the working tree (no build/ left here)."""
+    pytest.importorskip("build")
+    tmp = tmp_path_factory.mktemp("wheel")
+    working_tree(tmp / "src")
+    done = subprocess.run([sys.executable, "-m", "build", "--wheel", "--no-isolation", "--outdir", str(tmp / "dist"),
+                           str(tmp / "src")], capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr[-3000:]
+    (path,) = (tmp / "dist").glob("*.whl")
+    return path
 
 
 def circle_monodromy(matrix, center, radius, dim):

@@ -8,7 +8,6 @@ outside the repository with only the installed package on the path before site-p
 """
 import os
 import re
-import shutil
 import subprocess
 import sys
 import zipfile
@@ -19,26 +18,6 @@ import pytest
 from derivations.output.pipeline import ROOT, VOLATILE
 
 pytest.importorskip("build")
-
-
-def working_tree(target: Path) -> None:
-    files = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"], cwd=ROOT,
-                           capture_output=True, text=True, check=True).stdout.split("\0")
-    for name in filter(None, files):
-        if (ROOT / name).is_file():
-            (target / name).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copyfile(ROOT / name, target / name)
-
-
-@pytest.fixture(scope="module")
-def wheel(tmp_path_factory):
-    tmp = tmp_path_factory.mktemp("wheel")
-    working_tree(tmp / "src")
-    done = subprocess.run([sys.executable, "-m", "build", "--wheel", "--no-isolation", "--outdir", str(tmp / "dist"),
-                           str(tmp / "src")], capture_output=True, text=True, timeout=600)
-    assert done.returncode == 0, done.stderr[-3000:]
-    (path,) = (tmp / "dist").glob("*.whl")
-    return path
 
 
 def test_wheel_has_one_namespace_and_no_volatile_files(wheel):

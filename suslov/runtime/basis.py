@@ -15,6 +15,7 @@ certified for every p in ``BASIS_PS``) and ``sigma`` its ``_BASIS_SIGMA``.  Meth
 """
 from __future__ import annotations
 
+import functools
 import math
 from fractions import Fraction
 
@@ -24,7 +25,6 @@ import numpy as np
 
 from suslov.kernel import fourier, phase, trig_series
 from suslov.kernel.contexts import FLOAT
-from suslov.kernel.lru import BoundedCache
 from suslov.kernel.validate import mp_dps, mp_real, odd_p, real_array
 from suslov.recipes.rings import AcbBasisRing
 
@@ -33,9 +33,6 @@ from .integrals import CACHE_SIZE
 __all__ = ["basis_p", "series_float", "careful_phase", "gamma_basis", "gamma_basis_mp"]
 
 WHY_ODD = "closed-form meromorphic solutions exist for odd p only"
-_SERIES = BoundedCache(CACHE_SIZE)
-_SERIES_FLOAT = BoundedCache(CACHE_SIZE)
-_SERIES_MATRIX = BoundedCache(CACHE_SIZE)
 
 
 def basis_p(p, ps) -> int:
@@ -96,25 +93,22 @@ def _series_midpoints(core, p: int, d, radius: mpmath.mpf, bits: int, convert) -
                for matrix in (alpha, beta)] for part in ("real", "imag")] for comp in range(3)] for row in range(2)]
 
 
+@functools.lru_cache(maxsize=CACHE_SIZE)
 def _series_mp(core, p: int, d, dps: int) -> list:
-    """mpf coefficients within 10^-(dps+10) of the exact ones, cached per (p, d, dps)."""
-    key = (core, p, d._mpf_, dps)   # the raw value: two d that agree to the caller's precision are still two d
-    if key not in _SERIES:
-        radius = mpmath.mpf(10) ** -(dps + 10)
-        _SERIES[key] = _series_midpoints(core, p, d, radius, int(3.33 * (dps + 10)) + 12 * p, _mpf_of)
-    return _SERIES[key]
+    """mpf coefficients within 10^-(dps+10) of the exact ones, cached per (p, d, dps) (an mpf key compares
+    exact values: two d that agree to the caller's precision are still two d)."""
+    radius = mpmath.mpf(10) ** -(dps + 10)
+    return _series_midpoints(core, p, d, radius, int(3.33 * (dps + 10)) + 12 * p, _mpf_of)
 
 
+@functools.lru_cache(maxsize=CACHE_SIZE)
 def series_float(core, p: int, d: float) -> np.ndarray:
     """float64 coefficients (shape (2, 3, 2, 2, p+1): row, component, re/im, cos/sin, k), cached per (p, d).
 
     Each is its ball's midpoint with radius <= 1e-17 (from 64 + 12p bits), so within 1e-17 + half an
     ulp of the exact value (a rigorous bound).
     """
-    key = (core, p, d)
-    if key not in _SERIES_FLOAT:
-        _SERIES_FLOAT[key] = np.array(_series_midpoints(core, p, d, mpmath.mpf(1e-17), 64 + 12 * p, float))
-    return _SERIES_FLOAT[key]
+    return np.array(_series_midpoints(core, p, d, mpmath.mpf(1e-17), 64 + 12 * p, float))
 
 
 def careful_phase(p: int, d: float, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -128,14 +122,12 @@ def careful_phase(p: int, d: float, t: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return cos_out, sin_out
 
 
+@functools.lru_cache(maxsize=CACHE_SIZE)
 def _series_matrix(core, p: int, d: float) -> np.ndarray:
     """(2(p+1), 9) coefficients for trig_series: gamma^(1) (3 columns), Re V (3), Im V (3)."""
-    key = (core, p, d)
-    if key not in _SERIES_MATRIX:
-        c = series_float(core, p, d)
-        columns = [c[0, j, 0] for j in range(3)] + [c[1, j, 0] for j in range(3)] + [c[1, j, 1] for j in range(3)]
-        _SERIES_MATRIX[key] = np.ascontiguousarray(np.stack([np.concatenate(col) for col in columns], axis=1))
-    return _SERIES_MATRIX[key]
+    c = series_float(core, p, d)
+    columns = [c[0, j, 0] for j in range(3)] + [c[1, j, 0] for j in range(3)] + [c[1, j, 1] for j in range(3)]
+    return np.ascontiguousarray(np.stack([np.concatenate(col) for col in columns], axis=1))
 
 
 def _one_d(core, sigma, t: np.ndarray, p: int, d: float) -> np.ndarray:

@@ -17,7 +17,6 @@ import numpy as np
 
 from suslov.kernel import horner
 from suslov.kernel.display import MPValue
-from suslov.kernel.lru import BoundedCache
 from suslov.kernel.validate import mp_dps, mp_real, odd_p, rational, real_array
 from suslov.recipes.rings import IntegralRing, homogeneous_coefficients
 
@@ -26,7 +25,6 @@ __all__ = ["CACHE_SIZE", "integral_p", "exact_coefficients", "float_coefficients
 
 # per-(p, d) tables kept for repeated calls on one body; bounded so that sweeps over many bodies are not
 CACHE_SIZE = 1024
-_FLOAT_COEFFICIENTS = BoundedCache(CACHE_SIZE)
 WHY_ODD = "even p: the Poisson equations are not Liouville-integrable, no polynomial integral"
 
 
@@ -59,6 +57,7 @@ def first_integral_coefficients(core, ps, p, d) -> dict:
     return exact_coefficients(core, integral_p(p, ps), rational("d", d, positive=True))
 
 
+@functools.lru_cache(maxsize=CACHE_SIZE)
 def float_coefficients(core, p: int, d: float) -> tuple[np.ndarray, int]:
     """(3, p+1) coefficients of P1, P2, P3 over 2^E, correctly rounded to float64, and E (cached per (p, d)).
 
@@ -66,15 +65,12 @@ def float_coefficients(core, p: int, d: float) -> tuple[np.ndarray, int]:
     is at most 1 in modulus and none overflows (they reach 1e340 at p = 201, d = 50) or falls
     below the normal range unless it is 2^-1000 times smaller than the largest.
     """
-    key = (core, p, d)
-    if key not in _FLOAT_COEFFICIENTS:
-        exact = exact_coefficients(core, p, Fraction(d))
-        rows = [exact[name] for name in ("P1", "P2", "P3")]
-        top = max((abs(v) for row in rows for v in row), default=Fraction(1)) or Fraction(1)
-        E = top.numerator.bit_length() - top.denominator.bit_length() + 1   # top / 2^E in (1/4, 1)
-        two_E = Fraction(2) ** E
-        _FLOAT_COEFFICIENTS[key] = (np.array([[float(v / two_E) for v in row] for row in rows]), E)
-    return _FLOAT_COEFFICIENTS[key]
+    exact = exact_coefficients(core, p, Fraction(d))
+    rows = [exact[name] for name in ("P1", "P2", "P3")]
+    top = max((abs(v) for row in rows for v in row), default=Fraction(1)) or Fraction(1)
+    E = top.numerator.bit_length() - top.denominator.bit_length() + 1   # top / 2^E in (1/4, 1)
+    two_E = Fraction(2) ** E
+    return np.array([[float(v / two_E) for v in row] for row in rows]), E
 
 
 def first_integral(core, ps, p, d, omega1, omega2, gamma1, gamma2, gamma3) -> np.ndarray:

@@ -29,6 +29,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+import os
 import shutil
 import time
 from dataclasses import dataclass
@@ -51,6 +52,8 @@ SAMPLE_FOR_EXPLAIN = 20_000
 # 292 us in bench/results/general_angle.md (its 1 us per body is the vectorised call, not the sweep's)
 COST = {"galois_monodromy": 0.3, "angle_closed_form": 3e-5, "angle_general_closed_form": 2e-4,
         "angle_integrate:taylor": 5e-4, "angle_integrate:scipy": 2.0, "angle_enclosure": 0.3, "refused": 2e-5}
+CALIBRATION_SECONDS = 1.5   # at most this long timing sample points before a sweep with progress lines
+CALIBRATION_POINTS = 3
 WORKER_START = 1.0   # seconds to start a worker process (imports 0.4 s, Taylor compilation 0.5 s)
 ENCLOSURE_DIGITS = 15
 GALOIS_DIGITS = 20
@@ -67,13 +70,23 @@ class SweepPlan:
     chunks: int
     workers: int
     scheduler: str | None
+    measured: dict | None = None   # class -> seconds per point, timed on sample points (measure_costs)
+    startup: float = WORKER_START  # seconds before a worker's first chunk finishes its first point
+    free_cores: float | None = None   # cores not busy with other work when measured (os.getloadavg)
+
+    def point_cost(self, steps: tuple) -> float:
+        if self.measured and steps in self.measured:
+            return self.measured[steps]
+        return sum(COST[_cost_key(s, self.scene.method)] for s in steps)
 
     def estimate(self) -> float:
         total = 0.0
         for steps, count in self.classes.items():
-            total += count * sum(COST[_cost_key(s, self.scene.method)] for s in steps)
+            total += count * self.point_cost(steps)
         parallel = 1 if self.scheduler else self.workers
-        return total / parallel + (WORKER_START if self.workers > 1 or self.scheduler else 0.0)
+        if self.free_cores is not None and not self.scheduler:
+            parallel = max(1.0, min(parallel, self.free_cores))
+        return total / parallel + (self.startup if self.workers > 1 or self.scheduler else 0.0)
 
     def explain(self) -> str:
         sw = self.scene.sweep
@@ -296,10 +309,53 @@ def check_size(scene, plan: SweepPlan, confirmed: bool) -> None:
                          "suslov.simulate(..., confirmed=True))")
 
 
+def measure_costs(scene, budget: float = CALIBRATION_SECONDS) -> tuple[dict, int, float]:
+    """(class -> seconds per point, points timed, seconds of the first calls): each class of points timed
+    here on up to ``CALIBRATION_POINTS`` sample points, after one untimed call (compilation, caches: what
+    every worker pays once), within about ``budget`` seconds after those.  The table ``COST`` is a guess
+    from another machine and another load; a sweep of 5043 integrations announced 19 s and took 112 s."""
+    sw, options = scene.sweep, _options(scene)
+    samples: dict = {}
+    for i in np.random.default_rng(0).permutation(len(sw))[:SAMPLE_FOR_EXPLAIN]:
+        indices = samples.setdefault(classify(sw.point(int(i)), options), [])
+        if len(indices) < CALIBRATION_POINTS + 1:
+            indices.append(int(i))
+    measured, timed, first, start = {}, 0, 0.0, time.perf_counter()
+    for steps, indices in samples.items():
+        if time.perf_counter() - start - first > budget:
+            break
+        begin = time.perf_counter()
+        evaluate_point(sw.point(indices[0]), options)
+        first += time.perf_counter() - begin
+        begin, count = time.perf_counter(), 0
+        for i in indices[1:]:
+            evaluate_point(sw.point(i), options)
+            count += 1
+            if time.perf_counter() - start - first > budget:
+                break
+        if count:
+            measured[steps] = (time.perf_counter() - begin) / count
+            timed += count
+    return measured, timed, first
+
+
+def free_cores() -> float | None:
+    """Cores not busy with other processes (the 1-minute load average, this process's own share added
+    back), None where the platform has no load average."""
+    try:
+        return (os.cpu_count() or 1) - os.getloadavg()[0] + 1.0
+    except (AttributeError, OSError):
+        return None
+
+
 def compute_sweep(scene, plan: SweepPlan, store=None, progress=None) -> tuple[dict, float, int]:
     """Every point of ``plan`` (chunks ``store`` holds are not recomputed): (table, seconds, chunks computed)."""
     if progress:
-        progress(f"{len(scene.sweep)} points in {plan.chunks} chunks; estimated {plan.estimate():.1f} s")
+        plan.measured, timed, first = measure_costs(scene)
+        plan.startup, plan.free_cores = WORKER_START + first, free_cores()
+        busy = "" if plan.free_cores is None else f", {max(0.0, plan.free_cores):.1f} of {os.cpu_count()} cores free"
+        basis = f"timed on {timed} sample points here{busy}" if timed else "from the cost table"
+        progress(f"{len(scene.sweep)} points in {plan.chunks} chunks; estimated {plan.estimate():.1f} s ({basis})")
     tasks, keys = chunk_tasks(scene, plan.chunk)
     start = time.perf_counter()
     results, computed = executor.run_chunks(evaluate_chunk, tasks, keys, store=store, scheduler=plan.scheduler,
