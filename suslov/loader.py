@@ -159,15 +159,34 @@ def load_formulas(pmax: int | None = None, path=None, *, build: bool = True, use
 def _build(pmax: int, quiet: bool) -> None:
     require("build", f"load_formulas(pmax={pmax}) beyond the shipped module (pmax {active_formulas().PMAX})")
     command = [sys.executable, "-m", "suslov.build", "--pmax", str(pmax), "--install"] + (["--quiet"] if quiet else [])
-    # the child dies with this process (SIGTERM; its own workers die with it in turn); Ctrl-C reaches both,
-    # and subprocess.run kills the child on any exception here
-    done = subprocess.run(command, stdout=subprocess.PIPE if quiet else None, text=True,
-                          preexec_fn=lambda: die_with_parent(signal.SIGTERM))
-    if done.returncode == 130:
+    # the child dies with this process (SIGTERM; its own workers die with it in turn)
+    with subprocess.Popen(command, stdout=subprocess.DEVNULL if quiet else None,
+                          preexec_fn=lambda: die_with_parent(signal.SIGTERM)) as child:
+        try:
+            returncode = child.wait()
+        except BaseException:
+            _stop(child)
+            raise
+    if returncode == 130:
         raise KeyboardInterrupt
-    if done.returncode != 0:
-        raise RuntimeError(f"python -m suslov.build --pmax {pmax} --install failed (exit {done.returncode}); see its "
+    if returncode != 0:
+        raise RuntimeError(f"python -m suslov.build --pmax {pmax} --install failed (exit {returncode}); see its "
                            "message above")
+
+
+def _stop(child: subprocess.Popen) -> None:
+    """End an interrupted build: a Ctrl-C at a terminal reached it too (the same process group), so it gets a
+    moment to stop by itself; then SIGINT (it removes its staging and says so); then SIGKILL."""
+    for action, grace in ((None, 1.0), (child.send_signal, 3.0)):
+        if action is not None:
+            action(signal.SIGINT)
+        try:
+            child.wait(grace)
+            return
+        except subprocess.TimeoutExpired:
+            continue
+    child.kill()
+    child.wait()
 
 
 class _Forward:

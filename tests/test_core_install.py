@@ -70,9 +70,9 @@ import importlib.util, math, sys
 import suslov
 assert [n for n in {extras!r} if importlib.util.find_spec(n) is not None] == [], "an extra is installed"
 w1, w2 = suslov.omega(0.3, 3, 0.5)
-B = suslov.gamma_basis(0.7, 3, 0.5)
+B1, B3 = suslov.gamma_basis(0.7, 1, 0.5), suslov.gamma_basis(0.7, 3, 0.5)
 angle = float(suslov.scattering_angle(2.5, 0.7))
-print(float(w1), float(w2), float(B[0, 0]), float((B @ B.T - __import__('numpy').eye(3)).max()), angle)
+print(float(w1), float(w2), float(B1[0, 0]), float(abs(B3 @ B3.T - __import__('numpy').eye(3)).max()), angle)
 print([n for n in {extras!r} if n in sys.modules])
 print(suslov.__version__)
 """
@@ -81,7 +81,7 @@ print(suslov.__version__)
     numbers, loaded, version = done.stdout.strip().splitlines()
     w1, w2, b00, orthogonality, angle = map(float, numbers.split())
     assert abs(w1 - 6 * math.tanh(0.3)) < 1e-14 and abs(w2 + 6 * math.sqrt(1.25) / math.cosh(0.3)) < 1e-14
-    assert abs(b00 - math.tanh(0.7)) < 1e-14 and abs(orthogonality) < 1e-13   # gamma^(1)_1 = tanh t (p odd)
+    assert abs(b00 - math.tanh(0.7)) < 1e-14 and orthogonality < 1e-13   # p = 1: gamma^(1)_1 = tanh t
     x = math.pi * 2.5 / (2 * 0.7)   # Theorem 5.2 (corrected): cos(angle/2) = |cos(pi p/2)| / cosh(pi p/(2d))
     assert abs(angle - 2 * math.acos(abs(math.cos(math.pi * 2.5 / 2)) / math.cosh(x))) < 1e-12
     assert loaded == "[]" and version == "0.1.0"
@@ -119,5 +119,4 @@ print(sf.PMAX, sf.__file__, float(abs(B @ B.T - __import__('numpy').eye(3)).max(
     pmax, path, orthogonality = done.stdout.split()
     assert int(pmax) >= 17 and path.startswith(str(tmp_path / "store")) and float(orthogonality) < 1e-12
     certificates = json.loads((Path(path).parent / "certificates.json").read_text())
-    assert certificates["pmax"] == 17
-    assert not list(Path.cwd().glob("generated/.suslov*"))
+    assert certificates["pmax"] == 17 and sorted(p.name for p in (tmp_path / "store").iterdir()) == ["pmax-17"]

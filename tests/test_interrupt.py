@@ -34,10 +34,10 @@ def _session_members(sid: int) -> list[str]:
     return members
 
 
-def _interrupt(command: list[str], after: float, env: dict) -> tuple[int, float, list, str]:
+def _interrupt(command: list[str], after: float, env: dict, ignored: bool = True) -> tuple[int, float, list, str]:
     ignore = lambda: signal.signal(signal.SIGINT, signal.SIG_IGN)   # noqa: E731 (as `sh -c 'cmd &'` does)
     process = subprocess.Popen(command, cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                               text=True, start_new_session=True, preexec_fn=ignore)
+                               text=True, start_new_session=True, preexec_fn=ignore if ignored else None)
     time.sleep(after)
     assert process.poll() is None, "the run ended before it could be interrupted: " + process.stderr.read()
     process.send_signal(signal.SIGINT)
@@ -66,3 +66,41 @@ def test_sigint_stops_a_large_build_within_5_s(tmp_path):
     assert left == [], left
     assert "interrupted; nothing was replaced" in stderr
     assert not out.exists() or not any(out.iterdir())
+
+
+SWEEP = """
+name = "interrupted"
+[sweep]
+I11 = 2.0
+I22 = 1.0
+I33 = 1.5
+I13 = {linear = [-0.4, 0.4], count = 61}
+I23 = {linear = [-0.4, 0.4], count = 61}
+energy = [0.5, 1.0, 2.0]
+[effects]
+compute = ["scattering_angle", "scattering_angle_integrated"]
+"""
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads sessions from /proc (Linux)")
+def test_sigint_stops_a_sweep_within_5_s(tmp_path):
+    scene, out = tmp_path / "sweep.toml", tmp_path / "out"
+    scene.write_text(SWEEP)
+    code, elapsed, left, stderr = _interrupt([sys.executable, "-m", "suslov", "simulate", str(scene), "--out", str(out),
+                                              "--yes"], 12, dict(os.environ))
+    assert code == 130, stderr[-2000:]
+    assert elapsed < LIMIT, f"took {elapsed:.1f} s to stop"
+    assert left == [], left
+    assert "suslov: interrupted" in stderr and not out.exists()
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads sessions from /proc (Linux)")
+def test_sigint_stops_load_formulas_and_its_build_within_5_s(tmp_path):
+    env = dict(os.environ, SUSLOV_DATA_DIR=str(tmp_path / "store"), SUSLOV_CACHE_DIR=str(tmp_path / "cache"))
+    code, elapsed, left, stderr = _interrupt([sys.executable, "-c", "import suslov; suslov.load_formulas(pmax=61)"],
+                                             15, env, ignored=False)
+    assert code != 0 and "KeyboardInterrupt" in stderr, stderr[-2000:]
+    assert elapsed < LIMIT, f"took {elapsed:.1f} s to stop"
+    assert left == [], left
+    store = tmp_path / "store"
+    assert not store.exists() or not [p for p in store.iterdir() if p.name.startswith("pmax-")]
