@@ -18,6 +18,12 @@ checksum matched).  Location: ``$SUSLOV_CACHE_DIR``, else the platform's per-use
 (``platformdirs``: ``$XDG_CACHE_HOME/suslov-certified`` or ``~/.cache/suslov-certified`` on Linux); deleting it is always safe.  ``--no-cache`` bypasses it.
 Which results came from the cache is recorded in the volatile ``cache_report.json``: the
 committed outputs are byte-identical cold or warm.
+
+Why not ``diskcache`` (issue 36 asked): it stores pickles in SQLite and unpickles what it reads, with
+no checksum of the payload, so an edited or foreign entry would be executed by ``pickle.loads``
+before anything could reject it; here nothing is unpickled before its SHA-256 matched the key's, and
+the store is plain files a user can inspect and delete.  The two levels share that mechanism
+(``ChunkStore`` for per-p results and sweep chunks, a manifest of the same digests for trees).
 """
 from __future__ import annotations
 

@@ -44,6 +44,13 @@ the figures ``map`` (a scalar effect over the sweep's two varying fields) or ``h
 ``[motion]`` is optional there (energies are a sweep field).
 
 Every error names the file, the field and the reason (:class:`SceneError`).
+
+Validation is written here rather than with a schema library (issue 36 asked about pydantic and
+jsonschema): the rules are mostly semantic (exactly one of three body forms, effects and figures
+the body kind allows, an ordered time window, sizes bounded by the memory they cost), and each error
+must name the dotted field in the scene's own terms; a schema would check the types and leave these
+rules here anyway.  ``parse_scene`` takes a dict, so ``suslov.simulate`` validates Python scenes
+with the same rules and messages.
 """
 from __future__ import annotations
 
