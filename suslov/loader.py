@@ -20,14 +20,14 @@ default module only and says so.
 """
 from __future__ import annotations
 
-import importlib
-import importlib.util
 import json
 import os
 import subprocess
 import sys
 from pathlib import Path
 from types import ModuleType
+
+from suslov import manifest
 
 __all__ = ["active_formulas", "use_formulas", "load_formulas", "store_dir", "gf", "FORMULAS_ENV", "DATA_ENV"]
 
@@ -63,12 +63,9 @@ def _load_directory(directory: Path) -> ModuleType:
     if not path.is_file() or _pmax_of(directory) is None:
         raise FileNotFoundError(f"{directory}: not a generated tree (needs suslov_formulas.py and a readable "
                                 "certificates.json; write one with build_formulas.py --out DIR)")
-    # a distinct module name per directory: two ranges can be loaded side by side
-    name = f"suslov_formulas_{abs(hash(key)):x}"
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
+    # a distinct module name per directory: two ranges can be loaded side by side; the manifest is
+    # checked and exactly the checked bytes are executed (suslov.manifest)
+    module = manifest.load_module(directory, f"suslov_formulas_{abs(hash(key)):x}")
     _loaded[key] = module
     return module
 
@@ -77,11 +74,11 @@ def _default() -> ModuleType:
     if os.environ.get(FORMULAS_ENV):
         return _load_directory(Path(os.environ[FORMULAS_ENV]))
     try:
-        return importlib.import_module("generated.suslov_formulas")
+        return manifest.import_verified("generated.suslov_formulas")
     except ModuleNotFoundError as error:
         if error.name not in ("generated", "generated.suslov_formulas"):
             raise
-    return importlib.import_module("suslov.formulas.suslov_formulas")
+    return manifest.import_verified("suslov.formulas.suslov_formulas")
 
 
 def active_formulas() -> ModuleType:
