@@ -27,7 +27,7 @@ import sys
 from pathlib import Path
 from types import ModuleType
 
-from suslov import manifest
+import suslov.manifest as manifest
 
 __all__ = ["active_formulas", "use_formulas", "load_formulas", "store_dir", "gf", "FORMULAS_ENV", "DATA_ENV"]
 
