@@ -122,8 +122,9 @@ def careful_phase(p: int, d: float, t: np.ndarray) -> tuple[np.ndarray, np.ndarr
     """cos, sin of (p/d) t in mpmath with enough digits for any phase (used beyond ``phase.PHASE_LIMIT``)."""
     cos_out, sin_out = np.empty(t.shape), np.empty(t.shape)
     for index, tv in np.ndenumerate(t):
-        size = abs(p * tv / d)
-        with mpmath.workdps(30 + int(math.log10(size + 1))):
+        # log10 |p t/d| from the logarithms: the product itself overflows float64 for |t|/d > 1e308
+        size = math.log10(p) + math.log10(abs(float(tv)) or 1.0) - math.log10(d)
+        with mpmath.workdps(30 + max(0, int(size) + 1)):
             angle = mpmath.mpf(p) * mpmath.mpf(float(tv)) / mpmath.mpf(d)
             cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))
     return cos_out, sin_out
@@ -143,9 +144,10 @@ def _one_d(core, sigma, t: np.ndarray, p: int, d: float) -> np.ndarray:
     t = np.ravel(t)
     T, S = FLOAT.tanh_sech(t)
     values = trig_series.evaluate(T, S, _series_matrix(core, p, d))  # rows: gamma^(1) (3), Re V (3), Im V (3)
-    cphi, sphi = phase.phase_cos_sin(p, d, t)
-    if t.size and np.max(np.abs(t)) * (p / d) >= phase.PHASE_LIMIT:
+    with np.errstate(over="ignore", invalid="ignore"):   # p t/d beyond float64: careful_phase below
+        cphi, sphi = phase.phase_cos_sin(p, d, t)
         far = np.abs(p * t / d) >= phase.PHASE_LIMIT
+    if far.any():
         cphi[far], sphi[far] = careful_phase(p, d, t[far])
     out = np.empty((t.size, 3, 3))
     sign = -sigma[p]
