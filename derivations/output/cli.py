@@ -37,7 +37,7 @@ from derivations.output.pipeline import (
 )
 from derivations.registry import DERIVATIONS
 from suslov import manifest
-from suslov.executor import SchedulerError, check_reachable, scheduler_address
+from suslov.executor import SchedulerError, check_reachable, scheduler_address, worker_limit
 from suslov.outdir import OutputRefused
 
 
@@ -223,6 +223,10 @@ def main(argv: list[str] | None = None) -> int:
         explicit = any(a == "--pmax" or a.startswith("--pmax=") for a in (argv if argv is not None else sys.argv[1:]))
         return verify_tree(args.verify, args.pmax if explicit else None, args.quiet)
     use_cache = not args.no_cache and not os.environ.get(NO_CACHE_ENV)
+    if args.jobs is not None:
+        args.jobs, capped = worker_limit(args.jobs, "--jobs")
+        if capped:
+            print(f"build_formulas.py: note: {capped}", file=sys.stderr)
     options = BuildOptions(pmax=args.pmax, jobs=args.jobs, scheduler=scheduler_address(args.scheduler),
                            cache=use_cache)
     if options.scheduler:

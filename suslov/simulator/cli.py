@@ -15,7 +15,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from suslov.executor import SCHEDULER_ENV, SchedulerError, scheduler_address
+from suslov.executor import SCHEDULER_ENV, SchedulerError, scheduler_address, worker_limit
 from suslov.outdir import OutputRefused
 from suslov.simulator.engine import execute, write_outputs
 from suslov.simulator.outputs import check_out
@@ -43,6 +43,10 @@ def main(argv=None) -> int:
     if args.workers is not None and args.workers < 1:
         print(f"suslov: error: --workers {args.workers}: must be at least 1", file=sys.stderr)
         return 2
+    if args.workers is not None:
+        args.workers, capped = worker_limit(args.workers)
+        if capped:
+            print(f"suslov: note: {capped}", file=sys.stderr)
     progress = None if args.quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))
     try:
         scene = load_scene(args.scene)
