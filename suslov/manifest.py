@@ -143,12 +143,15 @@ def verify(directory) -> dict[str, bytes]:
     """
     directory = Path(os.path.realpath(Path(directory).expanduser()))
     entries = read(directory)
-    contents, infos = {}, {MANIFEST: os.stat(directory / MANIFEST)}
+    # who can write comes first: it holds even where the digests are waived (REBUILD_ENV)
+    _refuse_shared(directory, {name: os.stat(directory / name) for name in [MANIFEST, *sorted(entries)]
+                               if (directory / name).exists()})
+    contents = {}
     for name, expected in sorted(entries.items()):
         path = directory / name
         try:
             with open(path, "rb") as handle:   # read once: the bytes checked are the bytes executed
-                data, infos[name] = handle.read(), os.fstat(handle.fileno())
+                data = handle.read()
         except OSError as error:
             raise ManifestError(f"{directory}: {name} is listed in {MANIFEST} but cannot be read "
                                 f"({error.strerror or error}); refusing the tree") from None
@@ -162,7 +165,6 @@ def verify(directory) -> dict[str, bytes]:
     if extra:
         raise ManifestError(f"{directory}: {', '.join(extra)} is not listed in {MANIFEST}; a tree with unlisted "
                             "Python files is not executed")
-    _refuse_shared(directory, infos)
     return contents
 
 
@@ -227,6 +229,7 @@ def import_verified(name: str) -> ModuleType:
     except ManifestError as error:
         if os.environ.get(REBUILD_ENV) != str(directory):
             raise
+        _refuse_shared(directory, {n: os.stat(directory / n) for n in ("__init__.py", MODULE)})
         contents = {n: (directory / n).read_bytes() for n in ("__init__.py", MODULE)}
         print(f"suslov: {error}; loaded anyway for the build that rewrites it ({REBUILD_ENV})", file=sys.stderr)
     parent = sys.modules.get(package) or _execute(package, directory / "__init__.py", contents["__init__.py"],

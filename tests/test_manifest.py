@@ -168,3 +168,40 @@ def test_build_writes_the_manifest_last_over_the_emitted_files(tmp_path):
     (tree / "certificate_costs.json").write_text("{}")   # volatile: never listed
     write_manifest(tree)
     assert (tree / MANIFEST).read_bytes() == (GENERATED / MANIFEST).read_bytes()
+
+
+def test_the_build_may_load_its_own_stale_generated_tree_and_nothing_else(tmp_path, monkeypatch, capsys):
+    """After a merge generated/ may not match its manifest; the build (which rewrites it) loads it with a note,
+    through SUSLOV_REBUILDING naming that one directory.  Another tree, or a tree others can write, is still refused."""
+    from derivations.output import cli
+
+    package = copy_tree(tmp_path / "genstale")
+    with open(package / "suslov_formulas.py", "a") as handle:
+        handle.write("\nSTALE = True\n")
+    monkeypatch.setattr(cli, "GENERATED", package)
+    monkeypatch.delenv(manifest.REBUILD_ENV, raising=False)
+    cli.allow_rebuilding_generated(quiet=False)
+    assert os.environ[manifest.REBUILD_ENV] == os.path.realpath(package)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    module = manifest.import_verified("genstale.suslov_formulas")
+    assert module.STALE and "loaded anyway for the build" in capsys.readouterr().err
+    other = copy_tree(tmp_path / "other")
+    with open(other / "suslov_formulas.py", "a") as handle:
+        handle.write("\nSTALE = True\n")
+    with pytest.raises(ManifestError):
+        manifest.import_verified("other.suslov_formulas")
+    for name in ("genstale", "genstale.suslov_formulas"):
+        sys.modules.pop(name, None)
+    package.chmod(package.stat().st_mode | stat.S_IWOTH)
+    with pytest.raises(UntrustedTree):
+        manifest.import_verified("genstale.suslov_formulas")
+
+
+def test_the_rebuild_waiver_still_refuses_a_shared_tree_without_manifest(tmp_path, monkeypatch):
+    package = copy_tree(tmp_path / "genbare")
+    (package / MANIFEST).unlink()
+    monkeypatch.setenv(manifest.REBUILD_ENV, os.path.realpath(package))
+    monkeypatch.syspath_prepend(str(tmp_path))
+    package.chmod(package.stat().st_mode | stat.S_IWOTH)
+    with pytest.raises(UntrustedTree):
+        manifest.import_verified("genbare.suslov_formulas")
