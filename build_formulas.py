@@ -7,13 +7,14 @@ Usage examples::
     python build_formulas.py --pmax 51       # per-p tables up to p = 51
     python build_formulas.py --check         # compare generated/ with the build (cache or rebuild), exit 3 if it differs
     python build_formulas.py --only model    # certify one derivation (generated/ untouched)
-    python build_formulas.py --verify generated   # certify an existing tree's module, rewrite nothing
+    python build_formulas.py --verify generated   # check the tree's SHA256SUMS, certify its module, rewrite nothing
     python build_formulas.py --pdf           # build, then pdflatex into build/pdf/ (generated/ untouched)
     python build_formulas.py --diff HEAD~3   # what changed since a revision (or a directory), latexdiff PDF
 
 Every build certifies the generated module as emitted (``derivations/output/roundtrip.py``):
 it is imported from the staging directory and checked against the certified objects
-before anything is moved into place.
+before anything is moved into place.  The last file written is the manifest ``SHA256SUMS``
+(``suslov/manifest.py``), which the loader checks before executing a tree (``docs/trust.md``).
 
 Exit status: 0 success; 1 a certificate failed (the claim is named; the output
 directory is left as it was) or ``--verify`` found a discrepancy (or unreadable certificates);

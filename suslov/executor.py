@@ -100,6 +100,45 @@ def default_workers() -> int:
     return max(1, os.cpu_count() or 1)
 
 
+WORKER_MEMORY = 300 * 2**20   # resident memory of one worker with NumPy, mpmath and python-flint (measured: ~160 MB)
+
+
+def available_memory() -> int | None:
+    """Bytes of memory available to new processes (``MemAvailable`` of /proc/meminfo), None where unknown."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as handle:
+            for line in handle:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
+
+
+def cores() -> int:
+    """Cores this process may run on (its affinity mask where the system has one)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return default_workers()
+
+
+def worker_limit(requested: int | None, option: str = "--workers") -> tuple[int, str | None]:
+    """``(n, message)``: the worker processes to start for ``requested`` (None: all cores), at most the
+    cores and what the available memory holds at :data:`WORKER_MEMORY` each (at least 1); ``message``
+    says why when ``requested`` was lowered (issue 38: ``--workers 1000`` started 128 processes, 20 GB)."""
+    limit, why = cores(), f"{cores()} cores"
+    memory = available_memory()
+    if memory is not None and memory // WORKER_MEMORY < limit:
+        limit = max(1, memory // WORKER_MEMORY)
+        why = f"{memory / 2**30:.1f} GB available at about {WORKER_MEMORY / 2**30:.2f} GB per worker"
+    if requested is None:
+        return limit, None
+    if requested <= limit:
+        return requested, None
+    return limit, f"{option} {requested}: capped at {limit} ({why}); more processes would only compete"
+
+
 def scheduler_address(cli_value: str | None) -> str | None:
     """The scheduler from ``--scheduler`` or, failing that, the ``SUSLOV_SCHEDULER`` environment variable."""
     return cli_value or os.environ.get(SCHEDULER_ENV) or None
@@ -174,7 +213,7 @@ def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkSto
     if scheduler:
         _run_dask(work, chunks, keys, pending, scheduler, finish, meanwhile)
     else:
-        workers = default_workers() if workers is None else workers
+        workers = worker_limit(workers)[0]   # never more processes than cores or memory hold
         if workers <= 1 or len(pending) == 1:
             meanwhile()
             for i in pending:
@@ -239,7 +278,7 @@ def submit_ahead(work: Callable, chunks: list, keys: list[str], *, store: ChunkS
                  workers: int | None = None) -> Ahead:
     """Start ``[work(c) for c in chunks]`` in the kept local worker processes and return at once
     (the chunks ``store`` already holds are not recomputed); :meth:`Ahead.collect` gets the results."""
-    return Ahead(work, chunks, keys, store, default_workers() if workers is None else workers)
+    return Ahead(work, chunks, keys, store, worker_limit(workers)[0])
 
 
 _POOLS: dict = {}

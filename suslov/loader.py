@@ -22,8 +22,6 @@ and a caller killed outright takes the build with it (``PR_SET_PDEATHSIG`` on Li
 """
 from __future__ import annotations
 
-import importlib
-import importlib.util
 import json
 import os
 import signal
@@ -32,6 +30,7 @@ import sys
 from pathlib import Path
 from types import ModuleType
 
+import suslov.manifest as manifest
 from suslov.extras import require
 from suslov.interrupts import die_with_parent
 
@@ -70,12 +69,9 @@ def _load_directory(directory: Path) -> ModuleType:
     if not path.is_file() or _pmax_of(directory) is None:
         raise FileNotFoundError(f"{directory}: not a generated tree (needs suslov_formulas.py and a readable "
                                 "certificates.json; write one with build_formulas.py --out DIR)")
-    # a distinct module name per directory: two ranges can be loaded side by side
-    name = f"suslov_formulas_{abs(hash(key)):x}"
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
+    # a distinct module name per directory: two ranges can be loaded side by side; the manifest is
+    # checked and exactly the checked bytes are executed (suslov.manifest)
+    module = manifest.load_module(directory, f"suslov_formulas_{abs(hash(key)):x}")
     _loaded[key] = module
     return module
 
@@ -84,11 +80,11 @@ def _default() -> ModuleType:
     if os.environ.get(FORMULAS_ENV):
         return _load_directory(Path(os.environ[FORMULAS_ENV]))
     try:
-        return importlib.import_module("generated.suslov_formulas")
+        return manifest.import_verified("generated.suslov_formulas")
     except ModuleNotFoundError as error:
         if error.name not in ("generated", "generated.suslov_formulas"):
             raise
-    return importlib.import_module("suslov.formulas.suslov_formulas")
+    return manifest.import_verified("suslov.formulas.suslov_formulas")
 
 
 def active_formulas() -> ModuleType:
@@ -127,8 +123,9 @@ def load_formulas(pmax: int | None = None, path=None, *, build: bool = True, use
     """A certified generated module covering ``p <= pmax`` (or the tree at ``path``).
 
     From the per-user store when a stored module covers the range; otherwise, with ``build=True``,
-    built once by the source checkout's ``build_formulas.py --pmax N --install`` (progress and the
-    time estimate on stderr unless ``quiet``; about 1 minute for pmax 51, 4 for 101 on two cores).
+    built once by ``python -m suslov.build --pmax N --install`` (the derivations shipped in the package or
+    the checkout's; needs the ``[build]`` extra; progress and the time estimate on stderr unless ``quiet``;
+    about 1 minute for pmax 51, 4 for 101 on two cores).  Ctrl-C stops the build too.
     ``use=True`` also makes it the module ``import suslov`` uses (:func:`use_formulas`).
 
     >>> sf = load_formulas(pmax=15)              # doctest: +SKIP

@@ -15,6 +15,7 @@ checked by the build (``scattering`` certificates, method "ball enclosure").
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 
 from flint import acb, arb, ctx
@@ -28,13 +29,15 @@ from suslov.kernel.enclosure import (
     to_arb,
 )
 from suslov.kernel.contexts import ARB
+from suslov.kernel.cost import enclosure_seconds, monodromy_seconds, seconds_limit
 from suslov.kernel.gauss_angle import arb_root
 from suslov.kernel.kimura import GaloisGroup, exact_body, exact_invariants
 from suslov.kernel.kimura import galois_group as _galois_group
 from suslov.kernel.validate import PREC_RANGE, ball_prec, mp_dps, precision, renamed_keywords
 from suslov.loader import gf
 
-__all__ = ["AngleEnclosure", "EnclosureTooCostly", "GaloisGroup", "HypergeometricForm", "galois_group",
+__all__ = ["AngleEnclosure", "EnclosureTooCostly", "GaloisGroup", "HypergeometricForm", "MonodromyTooCostly",
+           "galois_group",
            "hypergeometric_form", "monodromy", "omega_coefficients", "scattering_angle_enclosure"]
 
 
@@ -159,13 +162,24 @@ def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, dps: int | N
         raise ValueError(f"method={method!r}: must be 'closed_form' or 'integration'")
     if method == "closed_form":
         return _closed_form_enclosure(I11, I22, I13, I23, branch, digits, prec)
+    limit = seconds_limit(max_seconds)
     saved = ctx.prec
     ctx.prec = int(prec if prec is not None else 3.33 * digits + 40)
     try:
         u, v = omega_coefficients(I11, I22, I13, I23, branch)
     finally:
         ctx.prec = saved
-    return ss_angle_enclosure(u, v, digits=digits, prec=prec, max_seconds=max_seconds, progress=progress)
+    size = max(float(abs(x).upper()) for x in u + v)
+    estimate = enclosure_seconds(size, digits)
+    if progress is not None:
+        progress(0.0, 0.0, estimate)
+    if limit is not None and estimate > limit:
+        raise EnclosureTooCostly(
+            f"enclosure not started: about {estimate:.3g} s estimated (|omega| coefficients up to {size:.3g}, "
+            f"digits={digits}; kernel/cost.py) exceeds max_seconds={limit:g}: the body is near the equilibrium "
+            "I13 = I23 = 0 or digits is high; method='closed_form' (the default) encloses the same angle in "
+            "milliseconds; max_seconds=None integrates anyway")
+    return ss_angle_enclosure(u, v, digits=digits, prec=prec, max_seconds=limit, progress=progress)
 
 
 def _closed_form_enclosure(I11, I22, I13, I23, branch, digits, prec) -> AngleEnclosure:
@@ -182,8 +196,13 @@ def _closed_form_enclosure(I11, I22, I13, I23, branch, digits, prec) -> AngleEnc
     return AngleEnclosure(angle, cos_angle, (), 0, 0, bits, {"closed_form": float(angle.rad())}, (), ())
 
 
+class MonodromyTooCostly(RuntimeError):
+    """The monodromy would take (or took) longer than ``max_seconds``; the message gives the estimate, the
+    working digits it needs and the Galois group decided exactly."""
+
+
 def monodromy(I11, I22, I13, I23, dps: int | None = None, branch: int = 1, max_dps: int | None = None,
-              **deprecated):
+              max_seconds: float | None = MAX_SECONDS, progress=None, **deprecated):
     """Certified monodromy and differential Galois group of the Poisson equations of any body.
 
     The paper's open problem (Conclusion): for omega(t) = u tanh t + v sech t (eq:o12, this body's
@@ -206,6 +225,12 @@ def monodromy(I11, I22, I13, I23, dps: int | None = None, branch: int = 1, max_d
     "reducible" (odd p) needs the exact no-logarithm certificate of that p: I13 = 0, or I23 = 0 by
     eq:lina, and p at most the loaded formulas' ``PMAX`` (beyond it: "unknown").
 
+    Time: before integrating, the cost of a pass is estimated from ``dps + guard``
+    (:mod:`suslov.kernel.cost`); above ``max_seconds`` (default 120 s; None: no limit) nothing is
+    integrated and :class:`MonodromyTooCostly` says the estimate, the working digits and the group
+    decided exactly (:func:`galois_group`, the closed form: microseconds).  While running, the limit is
+    checked between loops; ``progress(fraction, seconds, estimated_total)`` is called before each loop.
+
     >>> m = monodromy("5/4", 1, "3/10", "-1/2", dps=20)
     >>> m.verdict, m.liouvillian
     ('SO(3,C)', False)
@@ -226,21 +251,62 @@ def monodromy(I11, I22, I13, I23, dps: int | None = None, branch: int = 1, max_d
         finally:
             ctx.prec = saved
 
+    limit = seconds_limit(max_seconds)
     u, v = coefficients(digits)
     guard = guard_digits(residues(u, v))
     exact, detail = _exact_trivial_at_poles(I11, I22, I13, I23)
+    clock = _MonodromyClock((I11, I22, I13, I23), limit, progress)
     while True:
+        clock.before_pass(digits, guard)
         # u, v at the working precision: their radii bound the monodromy's
         u, v = coefficients(digits + guard)
-        mono = compute_monodromy(u, v, digits, guard)
+        mono = compute_monodromy(u, v, digits, guard, on_loop=clock.loop)
         if mono.matrices and mono.radius > 10.0 ** (1 - digits):   # the guard was too small: once more, measured
             guard += math.ceil(math.log10(mono.radius)) + digits + 5
+            clock.before_pass(digits, guard)
             u, v = coefficients(digits + guard)
-            mono = compute_monodromy(u, v, digits, guard)
+            mono = compute_monodromy(u, v, digits, guard, on_loop=clock.loop)
         result = decide_group(mono, exact_trivial_at_poles=exact, exact_detail=detail)
         if result.verdict != "unknown" or digits >= ceiling or not mono.matrices:
             return _with_exact_decision(result, I11, I22, I13, I23)
         digits = min(2 * digits, ceiling)
+
+
+class _MonodromyClock:
+    """The time limit and the progress reports of :func:`monodromy` (estimates: :mod:`suslov.kernel.cost`)."""
+
+    def __init__(self, body, limit, progress):
+        self.body, self.limit, self.progress = body, limit, progress
+        self.start = time.perf_counter()
+        self.pass_start, self.estimate, self.working = self.start, 0.0, 0
+
+    def _refuse(self, why: str):
+        try:
+            group = f"the group itself, decided exactly: {_galois_group(*self.body).group} (galois_group)"
+        except ValueError as error:
+            group = f"no exact decision ({error})"
+        raise MonodromyTooCostly(f"monodromy{tuple(str(x) for x in self.body)}: {why}; it needs {self.working} "
+                                 f"working digits (|omega| is large near the equilibrium I13 = I23 = 0); "
+                                 f"max_seconds=None integrates anyway; {group}")
+
+    def before_pass(self, digits: int, guard: int) -> None:
+        from suslov.kernel.monodromy import MAX_WORKING_DIGITS
+
+        now = time.perf_counter()
+        self.working, self.pass_start = digits + guard, now
+        if self.working > MAX_WORKING_DIGITS:
+            return   # compute_monodromy integrates nothing and says why ("unknown")
+        self.estimate = (now - self.start) + monodromy_seconds(self.working)
+        if self.limit is not None and self.estimate > self.limit:
+            self._refuse(f"not integrated: about {self.estimate:.3g} s estimated > max_seconds={self.limit:g}")
+
+    def loop(self, done: int, total: int) -> None:
+        now = time.perf_counter()
+        elapsed = now - self.start
+        if self.progress is not None:
+            self.progress(done / total, elapsed, max(self.estimate, elapsed))
+        if self.limit is not None and elapsed > self.limit and done < total:
+            self._refuse(f"stopped after {elapsed:.0f} s (max_seconds={self.limit:g}) at loop {done + 1} of {total}")
 
 
 def _with_exact_decision(result, I11, I22, I13, I23):

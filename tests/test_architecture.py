@@ -3,7 +3,7 @@
 The import graph is read from the source (``ast``), not from a running interpreter, so lazy
 imports inside functions count too.  Layers, lowest first (docs/architecture.md):
 
-    suslov.kernel, suslov.recipes, suslov.outdir, suslov.loader     (numerics, constructions, I/O)
+    suslov.kernel, suslov.recipes, suslov.outdir, suslov.manifest, suslov.loader   (numerics, constructions, I/O)
     suslov.executor, suslov.runtime, suslov.validated               (shared machinery)
     generated                                                        (the emitted module)
     suslov.simulator                                                 (scenes, sweeps, figures, CLI)
@@ -87,8 +87,8 @@ def floor(name: str) -> int:
     order = [("suslov.build", 10), ("derivations.output", 9), ("derivations.registry", 8), ("derivations.sections", 7),
              ("derivations.core", 6), ("derivations", 6), ("suslov.simulator", 5), ("generated", 4),
              ("suslov.validated", 3), ("suslov.runtime", 3), ("suslov.executor", 2), ("suslov.loader", 1),
-             ("suslov.outdir", 0), ("suslov.kernel", 0), ("suslov.recipes", 0), ("suslov.interrupts", 0),
-             ("suslov.extras", 0), ("suslov.cli", 5), ("suslov", 5)]
+             ("suslov.outdir", 0), ("suslov.manifest", 0), ("suslov.kernel", 0), ("suslov.recipes", 0),
+             ("suslov.interrupts", 0), ("suslov.extras", 0), ("suslov.cli", 5), ("suslov", 5)]
     for prefix, level in order:
         if name == prefix or name.startswith(prefix + "."):
             return level

@@ -64,7 +64,7 @@ def built(tmp_path_factory):
 
 def test_build_has_the_pages(built):
     _, out = built
-    for page in ("index", "tutorial", "api/index", "api/formulas", "api/runtime", "api/kernel", "api/recipes",
+    for page in ("index", "tutorial", "trust", "api/index", "api/formulas", "api/runtime", "api/kernel", "api/recipes",
                  "auto_examples/index", *(f"auto_examples/{name}" for name in GALLERY)):
         assert (out / f"{page}.html").is_file(), page
 

@@ -6,6 +6,7 @@ left in the checkout), checked with ``twine check``, installed with ``pip instal
 (its dependencies are those of the test environment), and the README's module example is run from
 outside the repository with only the installed package on the path before site-packages.
 """
+import hashlib
 import os
 import re
 import subprocess
@@ -26,6 +27,12 @@ def test_wheel_has_one_namespace_and_no_volatile_files(wheel):
     assert {t for t in top if not t.endswith(".dist-info")} == {"suslov"}
     assert "suslov/formulas/suslov_formulas.py" in names and "suslov/formulas/certificates.json" in names
     assert not [n for n in names if Path(n).name in VOLATILE]
+    # the manifest ships and matches what the wheel holds (issue 38: the installed module is verified on import)
+    archive = zipfile.ZipFile(wheel)
+    listed = dict(line.split("  ")[::-1] for line in archive.read("suslov/formulas/SHA256SUMS").decode().splitlines())
+    assert {"__init__.py", "suslov_formulas.py", "certificates.json"} <= set(listed)
+    for name, expected in listed.items():
+        assert hashlib.sha256(archive.read(f"suslov/formulas/{name}")).hexdigest() == expected, name
     done = subprocess.run([sys.executable, "-m", "twine", "check", "--strict", str(wheel)], capture_output=True,
                           text=True, timeout=300)
     assert done.returncode == 0, done.stdout + done.stderr

@@ -36,7 +36,8 @@ from derivations.output.pipeline import (
     write_atomically,
 )
 from derivations.registry import DERIVATIONS
-from suslov.executor import SchedulerError, check_reachable, scheduler_address
+import suslov.manifest as manifest
+from suslov.executor import SchedulerError, check_reachable, scheduler_address, worker_limit
 from suslov.interrupts import listen_for_interrupts
 from suslov.outdir import OutputRefused
 
@@ -89,9 +90,10 @@ def parser() -> argparse.ArgumentParser:
                          "certificate cache when an entry matches, else rebuilt in a temporary directory; with "
                          "--no-cache always rebuilt) and exit 3 if it differs")
     ap.add_argument("--verify", type=Path, metavar="DIR", default=None,
-                    help="certify the generated module in DIR (the committed generated/ or a copy) against the "
-                         "derivations without rewriting anything: exit 0, or 1 naming the first discrepancy; "
-                         "pmax is read from DIR/certificates.json")
+                    help="check DIR against its manifest (SHA256SUMS: every file's SHA-256, and nobody else may "
+                         "write the tree; see docs/trust.md), then certify its module against the derivations "
+                         "without rewriting anything: exit 0, or 1 naming the first discrepancy; pmax is read from "
+                         "DIR/certificates.json")
     ap.add_argument("--pdf", nargs="?", type=Path, const=ROOT / "build" / "pdf", default=None, metavar="OUTDIR",
                     help="after writing, compile the LaTeX documents (formulas, certificates) with pdflatex (two passes) into OUTDIR "
                          "(default build/pdf/, outside the tracked tree); generated/ gets no by-products")
@@ -140,6 +142,14 @@ def verify_tree(directory: Path, pmax: int | None, quiet: bool) -> int:
         print(f"build_formulas.py: --verify {directory}: certificates.json cannot be read ({error}); a tree without "
               "its certificates is not verified", file=sys.stderr)
         return 1
+    try:   # the manifest first (what the loader checks before executing the module): cheap, and nothing runs
+        manifest.verify(directory)
+    except manifest.ManifestError as error:
+        print(f"build_formulas.py: --verify {directory}: {error}", file=sys.stderr)
+        return 1
+    if not quiet:
+        print(f"--verify: {directory}: every file matches {manifest.MANIFEST} and nobody else can write the tree; "
+              "now certifying the module against the derivations", file=sys.stderr)
     if pmax is None:
         pmax = stated
     try:
@@ -173,9 +183,29 @@ def diff_command(old: str, new: Path) -> int:
     return 0
 
 
+def allow_rebuilding_generated(quiet: bool) -> None:
+    """Let this build (and its worker processes) load the checkout's generated module when it does not match
+    its manifest: after a merge or a hand edit, the build is how the tree is made consistent again.
+
+    The validated certificates evaluate the active module (:mod:`suslov.validated`); the module this build
+    emits is certified as written by the round trip, whatever the old one was.  A tree that other users can
+    write is still refused (:class:`suslov.manifest.UntrustedTree`).
+    """
+    try:
+        manifest.verify(GENERATED)
+    except manifest.UntrustedTree:
+        return
+    except manifest.ManifestError as error:
+        os.environ[manifest.REBUILD_ENV] = os.path.realpath(GENERATED)
+        if not quiet:
+            print(f"build_formulas.py: note: {error}", file=sys.stderr)
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = parser()
     args = ap.parse_args(argv)
+    if (GENERATED / "suslov_formulas.py").is_file():
+        allow_rebuilding_generated(args.quiet)
     unknown = [n for n in (args.only or []) if n not in DERIVATIONS]
     if unknown:
         ap.error(f"--only {unknown[0]!r}: unknown derivation (known: {', '.join(DERIVATIONS)})")
@@ -194,6 +224,10 @@ def main(argv: list[str] | None = None) -> int:
         explicit = any(a == "--pmax" or a.startswith("--pmax=") for a in (argv if argv is not None else sys.argv[1:]))
         return verify_tree(args.verify, args.pmax if explicit else None, args.quiet)
     use_cache = not args.no_cache and not os.environ.get(NO_CACHE_ENV)
+    if args.jobs is not None:
+        args.jobs, capped = worker_limit(args.jobs, "--jobs")
+        if capped:
+            print(f"build_formulas.py: note: {capped}", file=sys.stderr)
     options = BuildOptions(pmax=args.pmax, jobs=args.jobs, scheduler=scheduler_address(args.scheduler),
                            cache=use_cache)
     if options.scheduler:

@@ -34,7 +34,7 @@ from derivations.output import public_api
 from derivations.output.pdf import is_byproduct
 from derivations.output.render import render
 from derivations.registry import DERIVATIONS, resolve
-from suslov import outdir
+from suslov import manifest, outdir
 
 ROOT = Path(__file__).resolve().parents[2]   # the repository (derivations/<layer>/this file)
 GENERATED = ROOT / "generated"
@@ -257,6 +257,14 @@ def render_into(build: Build, directory: Path) -> list[str]:
                       "cache_report.json"]
 
 
+def write_manifest(directory: Path) -> Path:
+    """The tree's last file (:mod:`suslov.manifest`): the SHA-256 of every emitted, non-volatile file, so the
+    loader can refuse a tree changed after the build.  Written into the staging directory, before the swap."""
+    names = [p.name for p in Path(directory).iterdir()
+             if p.is_file() and p.name not in VOLATILE + (manifest.MANIFEST, outdir.MARKER) and not is_byproduct(p.name)]
+    return manifest.write(directory, names)
+
+
 BUILD_TOOL = "build_formulas.py"
 BUILD_SIGNATURE = "certificates.json"   # recognises build outputs written before the marker existed
 
@@ -280,6 +288,7 @@ def write_atomically(build: Build, target: Path) -> None:
             certify_module(build.log, build, staging)
             build.round_trip_done = True
             render_into(build, staging)
+        write_manifest(staging)
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
@@ -295,6 +304,7 @@ def install_tree(source: Path, target: Path) -> None:
         for item in Path(source).iterdir():
             if item.is_file() and item.name not in ("manifest.json", outdir.MARKER):
                 shutil.copyfile(item, staging / item.name)
+        write_manifest(staging)
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise

@@ -54,10 +54,20 @@ def canonical_frame(I) -> tuple[np.ndarray, tuple[float, float, float, float]]:
     if np.max(np.abs(M - M.T)) > 1e-12 * scale:
         raise ValueError(f"I is not symmetric (max |I - I^T| = {np.max(np.abs(M - M.T)):.3g})")
     M = (M + M.T) / 2
-    eig = np.linalg.eigvalsh(M)
-    if eig[0] <= 0:
-        raise ValueError(f"I is not positive definite (smallest eigenvalue {eig[0]:.6g})")
-    M = M / np.linalg.det(M) ** (1.0 / 3.0)
+    try:   # Cholesky decides graded tensors (eigenvalues 1 and 1e-300) that eigvalsh rounds to <= 0
+        np.linalg.cholesky(M)
+    except np.linalg.LinAlgError:
+        raise ValueError(f"I is not positive definite (smallest eigenvalue {np.linalg.eigvalsh(M)[0]:.6g})") from None
+    # det I = 1 through the logarithm of the determinant: entries spanning 1e-300..1e300 have a det that
+    # underflows to 0 (then inf/NaN everywhere) although its cube root is an ordinary number
+    sign, log_det = np.linalg.slogdet(M)
+    if sign <= 0 or not np.isfinite(log_det):
+        raise ValueError(f"I is not positive definite (det of I/max|I| has sign {sign:g}, log {log_det:.6g})")
+    with np.errstate(over="ignore", invalid="ignore"):
+        M = M * math.exp(-log_det / 3.0) if -log_det / 3.0 < 709.0 else M * np.inf
+    if not np.all(np.isfinite(M)):
+        raise ValueError(f"I: its eigenvalues span too many orders of magnitude (det(I/max|I|) = e^{log_det:.6g}); "
+                         "I / det(I)^(1/3) is beyond float64's range")
     R = rotation_about_e3(0.5 * math.atan2(2 * M[0, 1], M[0, 0] - M[1, 1]))
     M = R.T @ M @ R
     I11, I22, I13, I23 = M[0, 0], M[1, 1], M[0, 2], M[1, 2]

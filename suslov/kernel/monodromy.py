@@ -120,7 +120,8 @@ def _exponent(w_residue: acb_mat) -> acb:
     return acb(0, 1) * (w1 * w1 + w2 * w2 + w3 * w3).sqrt()
 
 
-def compute_monodromy(u, v, digits: int = 30, guard: int | None = None, with_infinity: bool = True) -> Monodromy:
+def compute_monodromy(u, v, digits: int = 30, guard: int | None = None, with_infinity: bool = True,
+                      on_loop=None) -> Monodromy:
     """The four monodromy matrices for omega = u tanh t + v sech t, each entry a ball of radius about
     10^-digits (module docstring for the loops); ``with_infinity=False`` skips the loop about all of
     them (the longest path; the relation of the fundamental group determines it), for callers that
@@ -131,7 +132,8 @@ def compute_monodromy(u, v, digits: int = 30, guard: int | None = None, with_inf
     precision too: see :func:`suslov.validated.monodromy`, which also retries with a larger guard when
     the radius comes out wider than asked).  Beyond ``MAX_WORKING_DIGITS`` (bodies very near the
     equilibrium I13 = I23 = 0) nothing is integrated: no matrices, one "unknown" certificate saying how
-    many digits it would need."""
+    many digits it would need.  ``on_loop(done, total)``, if given, is called before each loop and after
+    the last (the caller's time limit and progress: :func:`suslov.validated.monodromy`)."""
     saved = ctx.prec
     ctx.prec = working_precision(digits)
     try:
@@ -148,14 +150,16 @@ def compute_monodromy(u, v, digits: int = 30, guard: int | None = None, with_inf
         ctx.prec = working_precision(digits + guard)
         R = residues(u, v)
         log10_eps = -(digits + guard) - 8
-        matrices = {"x=0": path_transfer(R, circle(acb(0), BASE), log10_eps),
-                    "x=i": path_transfer(R, _lasso(acb(0, 1)), log10_eps),
-                    "x=-i": path_transfer(R, _lasso(acb(0, -1)), log10_eps)}
-        if not with_infinity:
-            return Monodromy(matrices, exponents, digits=digits, guard=guard)
         big = acb(BIG_RADIUS)
-        matrices["x=oo"] = path_transfer(R, segment(BASE, big) + circle(acb(0), big)[1:] + segment(big, BASE)[1:],
-                                         log10_eps)
+        paths = {"x=0": circle(acb(0), BASE), "x=i": _lasso(acb(0, 1)), "x=-i": _lasso(acb(0, -1))}
+        if with_infinity:
+            paths["x=oo"] = segment(BASE, big) + circle(acb(0), big)[1:] + segment(big, BASE)[1:]
+        tick = on_loop or (lambda done, total: None)
+        matrices = {}
+        for done, (name, path) in enumerate(paths.items()):
+            tick(done, len(paths))
+            matrices[name] = path_transfer(R, path, log10_eps)
+        tick(len(paths), len(paths))
         return Monodromy(matrices, exponents, digits=digits, guard=guard)
     finally:
         ctx.prec = saved

@@ -9,6 +9,7 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 
+from suslov.kernel import finite
 from suslov.kernel.contexts import FLOAT, MP
 from suslov.kernel.display import MPValue
 from suslov.kernel.validate import mp_dps, mp_real, real_array
@@ -43,8 +44,12 @@ def omega(emitted, t, p, d) -> tuple[np.ndarray, np.ndarray]:
     """``emitted(FLOAT, t, p, d)`` on validated, broadcast arrays (scalar parameters stay scalars)."""
     t, p, d = real_array("t", t), real_array("p", p, nonzero=True), real_array("d", d, positive=True)
     shape = np.broadcast_shapes(t.shape, p.shape, d.shape)
-    w1, w2 = emitted(FLOAT, t, p, d)
-    return full(w1, shape), full(w2, shape)
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
+        w1, w2 = emitted(FLOAT, t, p, d)
+    # p/d beyond float64 (or inf * 0): those entries again in mpmath, or a ValueError naming t, p, d
+    w1, w2 = finite.repair("omega", (full(w1, shape), full(w2, shape)), ("t", "p", "d"), (t, p, d),
+                           lambda *x: emitted(MP, *x))
+    return w1, w2
 
 
 def omega_mp(emitted, t, p, d, dps) -> tuple:
@@ -61,11 +66,19 @@ def omega_general(emitted, t, I11, I22, I13, I23, branch) -> tuple[np.ndarray, n
     shape = np.broadcast_shapes(t.shape, I11.shape, I22.shape, I13.shape, I23.shape)
     # the coefficients of omega are homogeneous of degree 0 in the entries: scaled to at most 1 first, a
     # tensor of size 1e-300 or 1e200 gives the same finite omega (its products overflowed to NaN)
+    given = (t, I11, I22, I13, I23)
     size = np.maximum(np.maximum(I11, I22), np.maximum(np.abs(I13), np.abs(I23)))
     I11, I22, I13, I23 = I11 / size, I22 / size, I13 / size, I23 / size
-    r = branch_sign(branch) * np.sqrt(I11 * I22)
-    w1, w2 = emitted(FLOAT, t, I11, I22, I13, I23, r)
-    return full(w1, shape), full(w2, shape)
+    sign = branch_sign(branch)
+    with np.errstate(over="ignore", invalid="ignore", under="ignore", divide="ignore"):
+        r = sign * np.sqrt(I11 * I22)
+        w1, w2 = emitted(FLOAT, t, I11, I22, I13, I23, r)
+    # entries spanning more than float64's range (scaled products underflow to 0/0): mpmath, or a
+    # ValueError naming the arguments (omega itself beyond float64: |I11, I22| / |I13, I23| > 1e308)
+    w1, w2 = finite.repair("omega_general", (full(w1, shape), full(w2, shape)), ("t", "I11", "I22", "I13", "I23"),
+                           given, lambda t, a, b, c, e: emitted(MP, t, a, b, c, e,
+                                                                                   sign * mpmath.sqrt(a * b)))
+    return w1, w2
 
 
 def omega_general_mp(emitted, t, I11, I22, I13, I23, branch, dps) -> tuple:

@@ -11,7 +11,8 @@ certified for every p in ``BASIS_PS``) and ``sigma`` its ``_BASIS_SIGMA``.  Meth
 2. *Float path.*  Midpoints within 1e-17, evaluated by ``suslov.kernel.trig_series``; the phase
    (p/d) t reduced in double-double arithmetic (``suslov.kernel.phase``) below ``PHASE_LIMIT`` and
    in mpmath with 30 + log10|phase| digits beyond (:func:`careful_phase`).
-3. *mp twin.*  Midpoints within 10^-(dps+10), summed in mpmath at dps + 10 digits.
+3. *mp twin.*  Midpoints within 10^-(dps+10), summed in mpmath at dps + 10 digits; the phase (p/d) t
+   with k more digits when it is about 10^k (:func:`phase_digits`; t and d are read with them too).
 """
 from __future__ import annotations
 
@@ -25,7 +26,7 @@ import numpy as np
 
 from suslov.kernel import fourier, phase, trig_series
 from suslov.kernel.contexts import FLOAT
-from suslov.kernel.validate import mp_dps, mp_real, odd_p, real_array
+from suslov.kernel.validate import DPS_RANGE, mp_dps, mp_real, odd_p, precision, real_array
 from suslov.recipes.rings import AcbBasisRing
 
 from .integrals import CACHE_SIZE
@@ -115,8 +116,9 @@ def careful_phase(p: int, d: float, t: np.ndarray) -> tuple[np.ndarray, np.ndarr
     """cos, sin of (p/d) t in mpmath with enough digits for any phase (used beyond ``phase.PHASE_LIMIT``)."""
     cos_out, sin_out = np.empty(t.shape), np.empty(t.shape)
     for index, tv in np.ndenumerate(t):
-        size = abs(p * tv / d)
-        with mpmath.workdps(30 + int(math.log10(size + 1))):
+        # log10 |p t/d| from the logarithms: the product itself overflows float64 for |t|/d > 1e308
+        size = math.log10(p) + math.log10(abs(float(tv)) or 1.0) - math.log10(d)
+        with mpmath.workdps(30 + max(0, int(size) + 1)):
             angle = mpmath.mpf(p) * mpmath.mpf(float(tv)) / mpmath.mpf(d)
             cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))
     return cos_out, sin_out
@@ -134,9 +136,10 @@ def _one_d(core, sigma, t: np.ndarray, p: int, d: float) -> np.ndarray:
     t = np.ravel(t)
     T, S = FLOAT.tanh_sech(t)
     values = trig_series.evaluate(T, S, _series_matrix(core, p, d))  # rows: gamma^(1) (3), Re V (3), Im V (3)
-    cphi, sphi = phase.phase_cos_sin(p, d, t)
-    if t.size and np.max(np.abs(t)) * (p / d) >= phase.PHASE_LIMIT:
+    with np.errstate(over="ignore", invalid="ignore"):   # p t/d beyond float64: careful_phase below
+        cphi, sphi = phase.phase_cos_sin(p, d, t)
         far = np.abs(p * t / d) >= phase.PHASE_LIMIT
+    if far.any():
         cphi[far], sphi[far] = careful_phase(p, d, t[far])
     out = np.empty((t.size, 3, 3))
     sign = -sigma[p]
@@ -161,13 +164,35 @@ def gamma_basis(core, sigma, ps, t, p, d) -> np.ndarray:
     return out
 
 
+def phase_digits(p: int, t, d, dps: int) -> int:
+    """Digits the phase (p/d) t needs beyond ``dps + 10``: its decimal exponent (0 below 1).
+
+    The mp twin multiplies by cos and sin of the phase, so its absolute error must be 10^-(dps+10);
+    a phase of size 10^k needs k more digits in t, d and the product (issue 38: at dps = 15 and
+    |p t/d| = 1e27 the phase had no correct digit).  Beyond ``DPS_RANGE``'s limit: ValueError naming the
+    digits it would take.
+    """
+    size = abs(p * t / d)
+    extra = max(0, int(mpmath.ceil(mpmath.log10(size)))) if size > 1 else 0
+    if dps + 10 + extra > DPS_RANGE[1]:
+        raise ValueError(f"t={mpmath.nstr(t, 5)}, d={mpmath.nstr(d, 5)}: the phase p t/d ~ {mpmath.nstr(size, 3)} "
+                         f"needs {dps + 10 + extra} working digits for dps={dps} (limit {DPS_RANGE[1]}); ask "
+                         f"for dps <= {DPS_RANGE[1] - 10 - extra} or a smaller |p t/d|")
+    return extra
+
+
 def gamma_basis_mp(core, sigma, ps, t, p, d, dps):
     """The mpmath twin: a 3x3 ``mpmath.matrix`` at ``dps`` digits (scalars t, d)."""
     dps = mp_dps(dps)
     p = basis_p(p, ps)
     with mpmath.workdps(dps):
+        t_in, d_in = t, d
         t = mp_real("t", t)
         d = mp_real("d", d, positive=True)
+    extra = phase_digits(p, t, d, dps)
+    if extra:   # read t and d again with the digits the phase p t/d needs (a decimal string is not rounded to dps)
+        with mpmath.workdps(dps + extra):
+            t, d = mp_real("t", t_in), mp_real("d", d_in, positive=True)
     rows = _series_mp(core, p, d, max(dps, 40))
     with mpmath.workdps(dps + 10):
         th = 2 * mpmath.atan(mpmath.exp(-t))
@@ -180,8 +205,10 @@ def gamma_basis_mp(core, sigma, ps, t, p, d, dps):
             return mpmath.fsum(alpha[k] * cosines[k] + beta[k] * sines[k] for k in range(p + 1))
 
         out = mpmath.matrix(3, 3)
-        phase_mp = p * t / d
-        cphi, sphi = mpmath.cos(phase_mp), mpmath.sin(phase_mp)
+        with mpmath.workdps(dps + 10 + extra):   # the phase to 10^-(dps+10) absolute, whatever its size
+            phase_mp = p * t / d
+            cphi, sphi = mpmath.cos(phase_mp), mpmath.sin(phase_mp)
+        cphi, sphi = +cphi, +sphi
         for j in range(3):
             out[0, j] = series(rows[0][j][0])
             re, im = series(rows[1][j][0]), series(rows[1][j][1])

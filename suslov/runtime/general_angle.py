@@ -17,7 +17,7 @@ import flint
 import mpmath
 import numpy as np
 
-from suslov.kernel import gauss_angle, phase
+from suslov.kernel import finite, gauss_angle, phase
 from suslov.kernel.contexts import ARB, FLOAT, MP
 from suslov.kernel.display import Ball, MPValue
 from suslov.kernel.enclosure import to_arb
@@ -43,6 +43,7 @@ def general_scattering_angle(invariants, emitted, I11, I22, I13, I23) -> np.ndar
     I13, I23 = real_array("I13", I13), real_array("I23", I23)
     I11, I22, I13, I23 = np.broadcast_arrays(I11, I22, I13, I23)
     _equilibrium((I13 == 0) & (I23 == 0))
+    given = (I11, I22, I13, I23)
     size = np.maximum(np.maximum(I11, I22), np.maximum(np.abs(I13), np.abs(I23)))
     I11, I22, I13, I23 = I11 / size, I22 / size, I13 / size, I23 / size
     lam = np.maximum(np.abs(I13), np.abs(I23))
@@ -53,7 +54,11 @@ def general_scattering_angle(invariants, emitted, I11, I22, I13, I23) -> np.ndar
         h, g, Y = np.minimum(0.5 * np.pi * U / lam, _HUGE), np.minimum(0.5 * np.pi * gap / lam, _HUGE), Y / lam
     s, c = phase.half_pi_parts(Y)
     with np.errstate(under="ignore", over="ignore", invalid="ignore"):
-        return np.asarray(emitted(FLOAT, h, g, s, c), dtype=float)
+        angle = np.asarray(emitted(FLOAT, h, g, s, c), dtype=float)
+    # entries spanning more than float64's range (I11/size underflows to 0): those again in mpmath
+    (angle,) = finite.repair("general_scattering_angle", (angle,), NAMES, given,
+                             lambda *body: (emitted(MP, *gauss_angle.mp_arguments(*invariants(MP, *body))),))
+    return angle
 
 
 def general_scattering_angle_mp(invariants, emitted, I11, I22, I13, I23, dps=None):

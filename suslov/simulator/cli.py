@@ -15,7 +15,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from suslov.executor import SchedulerError, scheduler_address
+from suslov.executor import SchedulerError, scheduler_address, worker_limit
 from suslov.interrupts import listen_for_interrupts
 from suslov.outdir import OutputRefused
 from suslov.simulator.api import simulate
@@ -31,6 +31,10 @@ def simulate_command(args) -> int:
     if args.workers is not None and args.workers < 1:
         print(f"suslov: error: --workers {args.workers}: must be at least 1", file=sys.stderr)
         return 2
+    if args.workers is not None:
+        args.workers, capped = worker_limit(args.workers)
+        if capped:
+            print(f"suslov: note: {capped}", file=sys.stderr)
     progress = None if args.quiet else (lambda msg: print(msg, file=sys.stderr, flush=True))
     try:
         scene = load_scene(args.scene)
