@@ -135,11 +135,11 @@ def test_validated_routines_follow_mp_dps():
 
 def test_old_keywords_still_work_for_one_release():
     with pytest.warns(DeprecationWarning, match=r"digits=.*use dps="):
-        old = validated.scattering_angle_enclosure("5/4", 1, "3/10", "-1/2", dps=20)
+        old = validated.scattering_angle_enclosure("5/4", 1, "3/10", "-1/2", digits=20)
     new = validated.scattering_angle_enclosure("5/4", 1, "3/10", "-1/2", dps=20)
     assert old.angle.mid() == new.angle.mid() and old.width == new.width
     with pytest.warns(DeprecationWarning, match="max_digits"):
-        validated.monodromy("5/4", 1, "3/10", "-1/2", dps=10, max_dps=10)
+        validated.monodromy("5/4", 1, "3/10", "-1/2", dps=10, max_digits=10)
     with pytest.raises(TypeError, match="unexpected keyword argument 'digit'"):
         validated.scattering_angle_enclosure("5/4", 1, "3/10", "-1/2", digit=20)
     with warnings.catch_warnings():
