@@ -340,3 +340,10 @@ CONCLUSION_EVEN = Printed(
     r"I_{13}=0,\ p\ \text{even}:\ \text{all solutions meromorphic},\ \text{not Liouvillian}",
     "Conclusion",
 )
+
+# proof of Proposition 4.1: "one can check that I11^2 - (J2 - J3)^2 > 0" for the root with sign -
+PROP41_TRIANGLE = Printed(
+    "Proposition 4.1 (proof, triangle)",
+    r"I_{11}^2-(J_2-J_3)^2>0",
+    "section 4, proof of Proposition 4.1",
+)
