@@ -234,9 +234,13 @@ EXAMPLE_P3 = Printed(
 )
 
 
-def printed_example(p: int, t, d):
-    """The printed real solutions for p = 1 and p = 3 (rows gamma^(1..3)), evaluated with mpmath."""
-    import mpmath as mp
+def printed_example(p: int, t, d, ops=None):
+    """The printed real solutions for p = 1 and p = 3 (rows gamma^(1..3)), evaluated with mpmath, or with
+    ``ops`` (an object with sqrt, sech, tanh, cos, sin, exp, cosh, sinh: the exact substitution x = e^t of
+    ``derivations.sections.printed_examples`` uses this same transcription)."""
+    import mpmath
+
+    mp = mpmath if ops is None else ops
 
     c = mp.sqrt(d * d + 1)
     S, T = mp.sech(t), mp.tanh(t)
