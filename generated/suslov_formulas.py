@@ -72,7 +72,7 @@ CERTIFICATES_FILE = Path(__file__).with_name("certificates.json")
 def _omega(ctx, t, p, d):
     """omega(t) for I13 = 0 (omegas), branch c = +sqrt(d^2+1).
 
-    Emitted from the certified expression; certificates: special_case:038, special_case:041.
+    Emitted from the certified expression; certificates: special_case:037, special_case:039.
     """
     c = ctx.hypot(d, 1)
     k0 = p/d
@@ -97,7 +97,7 @@ def _omega_general(ctx, t, I11, I22, I13, I23, r):
 def _lambda_squared(ctx, I11, I22, I13, I23):
     """(Re, Im) of Lambda^2 at the Darboux point with m3 = i sqrt(I11 I22).
 
-    Emitted from the certified expression; certificates: kovalevskaya:068, kovalevskaya:069.
+    Emitted from the certified expression; certificates: kovalevskaya:066, kovalevskaya:067.
     """
     r = ctx.sqrt(I11)*ctx.sqrt(I22)
     return (I11*I22*(I11 - I22)*(I11*(I23*I23) - (I13*I13)*I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), -2*I11*I13*I22*I23*r*(I11 - I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)))
@@ -106,7 +106,7 @@ def _lambda_squared(ctx, I11, I22, I13, I23):
 def _p_squared_i13_zero(ctx, I11, I22, I23):
     """p^2 = Lambda^2 in the case I13 = 0.
 
-    Emitted from the certified expression; certificates: kovalevskaya:069, kovalevskaya:080.
+    Emitted from the certified expression; certificates: kovalevskaya:067, kovalevskaya:078.
     """
     return I22*(I11 - I22)/(I23*I23)
 
@@ -114,7 +114,7 @@ def _p_squared_i13_zero(ctx, I11, I22, I23):
 def _p_squared_i23_zero(ctx, I11, I22, I13):
     """p^2 = Lambda^2 in the case I23 = 0.
 
-    Emitted from the certified expression; certificates: kovalevskaya:069, kovalevskaya:080.
+    Emitted from the certified expression; certificates: kovalevskaya:067, kovalevskaya:078.
     """
     return -I11*(I11 - I22)/(I13*I13)
 
@@ -122,7 +122,7 @@ def _p_squared_i23_zero(ctx, I11, I22, I13):
 def _special_parameters(ctx, I11, I22, I23):
     """(p, d) of a body with I13 = 0 (eq:necc1, corrected).
 
-    Emitted from the certified expression; certificates: special_case:063.
+    Emitted from the certified expression; certificates: special_case:061.
     """
     d = ctx.sqrt(I11/I22 - 1)
     return (-I22*d/I23, d)
@@ -131,7 +131,7 @@ def _special_parameters(ctx, I11, I22, I23):
 def _scattering_angle(ctx, x, s, c):
     """Delta psi from x = pi |p|/(2d), s = |sin(pi p/2)|, c = |cos(pi p/2)| (Theorem 5.2, evaluation form).
 
-    Emitted from the certified expression; certificates: scattering:252, scattering:242, scattering:248.
+    Emitted from the certified expression; certificates: scattering:250, scattering:240, scattering:246.
     """
     return 2*ctx.atan2(ctx.sqrt((s*s)*(ctx.sech(x)*ctx.sech(x)) + (ctx.tanh(x)*ctx.tanh(x))), c*ctx.sech(x))
 
@@ -139,7 +139,7 @@ def _scattering_angle(ctx, x, s, c):
 def _gauss_invariants(ctx, I11, I22, I13, I23):
     """(U^2, a, b, c2) of a body: w_-^2 = a + i b = (u - i v).(u - i v), U^2 = u.u, c2 = (u x v)_3^2.
 
-    Emitted from the certified expression; certificates: gauss:351, gauss:352.
+    Emitted from the certified expression; certificates: gauss:349, gauss:350.
     """
     r = ctx.sqrt(I11)*ctx.sqrt(I22)
     return ((I11*I11)*(I22*I22)*((I13*I13) + (I23*I23))/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), I11*I22*(I11 - I22)*(-I11*(I23*I23) + (I13*I13)*I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), -2*I11*I13*I22*I23*r*(I11 - I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), (I11*I11*I11)*(I22*I22*I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)))
@@ -148,7 +148,7 @@ def _gauss_invariants(ctx, I11, I22, I13, I23):
 def _general_angle(ctx, h, g, s, c):
     """Delta psi of any body from h = pi U/2, g = pi (U - X)/2, s = |sin(pi Y/2)|, c = |cos(pi Y/2)| (w_- = X + i Y; evaluation form).
 
-    Emitted from the certified expression; certificates: general_angle:356, general_angle:355, general_angle:361.
+    Emitted from the certified expression; certificates: general_angle:354, general_angle:353, general_angle:359.
     """
     return 2*ctx.atan2(ctx.sqrt(ctx.expm1(-2*g)*ctx.expm1(2*g - 4*h)/(ctx.expm1(-2*h)*ctx.expm1(-2*h)))*ctx.sqrt((s*s)*(ctx.sech(h)*ctx.sech(h)) + (ctx.tanh(h)*ctx.tanh(h))), ctx.sqrt((c*c)*(ctx.sech(h)*ctx.sech(h)) + ((s*s)*(ctx.sech(h)*ctx.sech(h)) + (ctx.tanh(h)*ctx.tanh(h)))*ctx.exp(-2*g)*(ctx.expm1(2*g - 2*h)*ctx.expm1(2*g - 2*h))/(ctx.expm1(-2*h)*ctx.expm1(-2*h))))
 
@@ -353,7 +353,7 @@ def scattering_angle(p: ArrayLike, d: ArrayLike) -> np.ndarray:
         cos(Delta psi / 2) = |cos(pi p/2)| / cosh(pi p/(2 d)),   cos(Delta psi) = -gamma1(+oo)
 
     (the paper's undefined ``q`` is ``d``; odd p gives Delta psi = pi).  Certified:
-    angle scattering:242, route scattering:248, stable scattering:252.
+    angle scattering:240, route scattering:246, stable scattering:250.
 
     Evaluated as ``2 atan2(sqrt(tanh^2 x + s^2 sech^2 x), c sech x)`` with
     ``x = pi |p|/(2d)`` and ``s``, ``c`` = ``|sin|``, ``|cos|`` of ``pi p/2`` with p reduced
