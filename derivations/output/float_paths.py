@@ -1,7 +1,8 @@
 """Float paths of the generated module against its exact core and mpmath twins (numeric evidence).
 
 Part 3 of the round trip (:mod:`derivations.output.roundtrip`).  For each float64 function the
-module's docstring states an error bound; here the function is evaluated at seeded
+module's docstring states an error bound.  For ``omega`` and ``scattering_angle`` it is proven
+(:mod:`derivations.output.float_proofs`); for the others the function is evaluated at seeded
 points, including the hard cases of ``tests/test_hard_cases.py`` (|t| up to 1e4, d from
 1e-3 to 1e3, p within 1e-13 of odd integers and on both branches of the exact reduction
 of pi p/2, large omega), and compared with the mpmath twin at 40 digits, for every p in
@@ -52,23 +53,6 @@ def _record(log, claim, ok, seconds, points, worst, method=METHOD):
 
 def _ratio(error, bound) -> float:
     return float(mpmath.mpf(error) / mpmath.mpf(bound))   # in mpmath: either may lie beyond float64
-
-
-def check_omega(log: CertificateLog, module) -> Certificate:
-    rng = np.random.default_rng(1201)
-    worst, points = 0.0, 0
-    with stopwatch() as elapsed:
-        cases = [(1, 0.5), (3, 0.5), (15, 2.0), (-4, 1.0), (2.5, 1e-3), (7, 1e3)]
-        cases += [(float(rng.uniform(-40, 40)), float(10 ** rng.uniform(-3, 3))) for _ in range(6)]
-        for p, d in cases:
-            w1, w2 = module.omega(np.array(HARD_T), p, d)
-            bound = 4e-16 * abs(p) / d * math.sqrt(d * d + 1)
-            for i, t in enumerate(HARD_T):
-                e1, e2 = module.omega_mp(t, p, d, dps=DPS)
-                worst = max(worst, _ratio(abs(w1[i] - e1), bound), _ratio(abs(w2[i] - e2), bound))
-                points += 1
-    return _record(log, "omega: float64 within 4e-16 (|p|/d) sqrt(d^2+1) of omega_mp", worst <= 1, elapsed[0], points,
-                   worst)
 
 
 def check_omega_general(log: CertificateLog, module) -> Certificate:
@@ -245,24 +229,6 @@ def check_basis_mp_exactly(log: CertificateLog, module, p: int, core) -> Certifi
                    worst <= mpmath.mpf(10) ** -40, elapsed[0], len(EXACT_POINTS), float(worst / mpmath.mpf(10) ** -40),
                    "numeric evidence (not a certificate): exact rationals, the phase and the twin in mpmath at "
                    "60 digits, 2 points")
-
-
-def check_scattering_angle(log: CertificateLog, module) -> Certificate:
-    rng = np.random.default_rng(1500)
-    ps = [1.0, 3.0, 2.0, 0.5, 2.5, 1 + 1e-13, 3 - 1e-13, 2 + 1e-13, 7.3, 5.6, 1.9, -2.7, -0.6]
-    ps += [float(v) for v in rng.uniform(-60, 60, 12)]
-    ds = list(HARD_D) + [float(v) for v in 10 ** rng.uniform(-3, 3, 4)]
-    worst, points = 0.0, 0
-    with stopwatch() as elapsed:
-        values = module.scattering_angle(np.array(ps)[:, None], np.array(ds)[None, :])
-        for i, p in enumerate(ps):
-            for j, d in enumerate(ds):
-                exact = module.scattering_angle_mp(p, d, dps=DPS)
-                worst = max(worst, _ratio(abs(values[i, j] - exact), 1e-13 * abs(exact)) if exact else 0.0)
-                points += 1
-    return _record(log, "scattering_angle: float64 within relative 1e-13 of scattering_angle_mp (p near integers, "
-                   "both branches of the reduction of pi p/2, d from 1e-3 to 1e3)", worst <= 1, elapsed[0], points,
-                   worst)
 
 
 def check_general_scattering_angle(log: CertificateLog, module) -> list:
@@ -460,7 +426,10 @@ def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list
     """Every float-path check; one per function, and one per p for the per-p functions, except the p
     in ``skip`` (bases certified in workers: :func:`derivations.output.roundtrip.per_p_checks` runs these
     same checks for them in workers)."""
-    certs = [check_omega(log, module), check_omega_general(log, module), check_scattering_angle(log, module),
+    from derivations.output.float_proofs import certificate as proven
+
+    # omega and scattering_angle: proven bounds (float_proofs) instead of samples
+    certs = [proven(log, module, "omega"), check_omega_general(log, module), proven(log, module, "scattering_angle"),
              *check_general_scattering_angle(log, module), check_special_case_chain(log, module), check_meromorphy(log, module),
              check_kovalevskaya_exponents(log, module, build.results["kovalevskaya"].exports["matrix"]),
              check_meromorphy_cases(log, module), check_input_validation(log, module),
