@@ -182,8 +182,9 @@ def omega(t: ArrayLike, p: ArrayLike, d: ArrayLike) -> tuple[np.ndarray, np.ndar
     non-zero; ``d > 0`` with ``d^2 = I11/I22 - 1``.
 
     ``t``, ``p`` and ``d`` broadcast like NumPy arrays; returns two float64 arrays of the
-    broadcast shape.  No overflow for any t.  Error bound (certified as numeric evidence
-    against :func:`omega_mp`): absolute ``4e-16 (|p|/d) sqrt(d^2+1)`` per component.
+    broadcast shape.  No overflow for any t.  Error bound (proven from the emitted code, rounding
+    model with libm calls within 4 ulp, for every t, d in [1e-3, 1e3]): ``5e-15 |omega_i| +
+    1e-300 (|p|/d) sqrt(d^2+1)`` per component (the second term where sech t underflows).
 
     >>> w1, w2 = omega([0.0, 1.0], 3, [0.5, 2.0])
     >>> float(w1[0]), round(float(w1[1]), 12)   # (3/2) tanh 1
@@ -359,7 +360,8 @@ def scattering_angle(p: ArrayLike, d: ArrayLike) -> np.ndarray:
     ``x = pi |p|/(2d)`` and ``s``, ``c`` = ``|sin|``, ``|cos|`` of ``pi p/2`` with p reduced
     exactly (``suslov.kernel.phase.half_pi_parts``): no arccos near 1, no overflow for
     small d, accurate for p within 1e-12 of an integer.  ``p``, ``d`` broadcast.  Error
-    bound (evidence against :func:`scattering_angle_mp`): relative 1e-13.
+    bound (proven from the emitted code, rounding model with libm calls within 4 ulp, for
+    ``pi |p|/(2d) <= 1024``): absolute 1.5e-14.
 
     >>> round(float(scattering_angle(2.0, 1.0)), 12)   # 2 arccos(1/cosh(pi))
     2.968844459491
