@@ -37,6 +37,7 @@ ETA = arb(2) ** -1074             # smallest subnormal: the absolute part of an 
 ULP_LIBM = 4                      # assumed accuracy of libm / NumPy transcendental kernels, in ulp
 LIBM_REL = 2 * ULP_LIBM * U       # k ulp <= k 2^-52 |y| = 2 k u |y| for normal y
 LIBM_ABS = ULP_LIBM * ETA
+TINY = arb(2) ** -1021            # twice the smallest normal: a result above it cannot underflow
 METHOD = "proven rounding-error bound, ball arithmetic over {n} boxes"
 
 
@@ -73,22 +74,38 @@ def _min(a: arb, b: arb) -> arb:
 class FE:
     """A float64 value over a box: exact values ``v``, absolute bound ``e``, mixed bound ``r |x| + a``."""
 
-    __slots__ = ("v", "e", "r", "a", "sign")
+    __slots__ = ("v", "e", "r", "a", "sign", "w", "aw", "m", "low")
 
     def __init__(self, v, e=0, r=None, a=None, sign=0):
         # sign: +1 / -1 when every exact value of the box has that sign (or is 0), else 0; kept apart from
         # the ball because a ball of [0, h] may reach below 0 by its rounding
         self.v = arb(v)
         self.sign = sign or (1 if self.v >= 0 else (-1 if self.v <= 0 else 0))
-        if self.sign > 0:
-            self.v = self.v.nonnegative_part()
-        elif self.sign < 0:
+        if self.sign > 0 and not self.v >= 0:
+            self.v = self.v.nonnegative_part()          # [0, upper]: only where the ball reaches below 0
+        elif self.sign < 0 and not self.v <= 0:
             self.v = -((-self.v).nonnegative_part())
         e = _nonneg(arb(e))
         if r is None:                  # no relative information: the absolute bound is the mixed one
             r, a = arb(0), e
         self.r, self.a = _nonneg(arb(r)), _nonneg(arb(a if a is not None else 0))
         self.e = _min(e, self.r * _mag(self.v) + self.a)
+        # the magnitude form |computed - exact| <= w M + aw, M = the sum of |terms| (|x| itself unless a sum or a
+        # product of sums made it), m an upper bound of M: Higham's bound for sums, with no cancellation
+        # penalty; set by _sum and __mul__ after construction
+        self.w, self.aw, self.m = self.r, self.a, _mag(self.v)
+        # a lower bound of |x| kept as an exact number: a ball [1e-9, 1] cannot carry its lower end (the
+        # radius has 30 bits); set by products, squares and one-sign sums after construction
+        self.low = _lower_abs(self.v)
+
+    def _with_low(self, low) -> "FE":
+        if self.low < low:
+            self.low = low
+        return self
+
+    def _with_magnitude(self, w, aw, m) -> "FE":
+        self.w, self.aw, self.m = w, aw, m
+        return self
 
     @staticmethod
     def lift(x) -> "FE":
@@ -102,7 +119,7 @@ class FE:
         """fl(z) = z (1 + delta) + eta of a result z known to within ``propagated`` and ``relative |x| + absolute``."""
         if exact_op:
             return FE(value, propagated, relative, absolute, sign)
-        eta = ETA if underflow else 0
+        eta = ETA if underflow and not _lower_abs(value) > TINY else 0    # a normal result does not underflow
         return FE(value, propagated + U * (_mag(value) + propagated) + eta,
                   (1 + relative) * (1 + U) - 1, absolute * (1 + U) + eta, sign)
 
@@ -125,33 +142,50 @@ class FE:
             relative, absolute = _max(self.r, other.r), self.a + other.a      # one sign: no cancellation
         else:
             relative, absolute = arb(0), propagated
-        return self._rounded(value, propagated, relative, absolute, underflow=False, sign=self.sign if same else 0)
+        out = self._rounded(value, propagated, relative, absolute, underflow=False, sign=self.sign if same else 0)
+        if same:
+            out._with_low(arb((self.low + other.low).lower()))
+        # |err| <= w_a M_a + aw_a + w_b M_b + aw_b + u |a~ + b~| <= (max w (1 + u) + u)(M_a + M_b) + (aw_a + aw_b)(1 + u)
+        return out._with_magnitude(_max(self.w, other.w) * (1 + U) + U, (self.aw + other.aw) * (1 + U), self.m + other.m)
 
     def __neg__(self):
-        return FE(-self.v, self.e, self.r, self.a, -self.sign)
+        return FE(-self.v, self.e, self.r, self.a, -self.sign)._with_magnitude(self.w, self.aw, self.m)
 
     def __abs__(self):
-        return FE(abs(self.v), self.e, self.r, self.a, 1)
+        return FE(abs(self.v), self.e, self.r, self.a, 1)._with_magnitude(self.w, self.aw, self.m)
 
     def __mul__(self, other):
         other = FE.lift(other)
         if other is self:      # a square (x*x in the emitted text, or one memoised call twice): >= 0
             m = _mag(self.v)
-            return self._rounded(self.v**2, 2 * m * self.e + self.e**2, 2 * self.r + self.r**2,
-                                 2 * self.a * m * (1 + self.r) + self.a**2, sign=1)
+            low = self.low
+            return self._rounded((low * low).union(m * m), 2 * m * self.e + self.e**2, 2 * self.r + self.r**2,
+                                 2 * self.a * m * (1 + self.r) + self.a**2, sign=1)._with_low(
+                arb((low * low * (1 - self.r) ** 2 * (1 - U)).lower()) if self.r < 1 else arb(0))
         ma, mb = _mag(self.v), _mag(other.v)
         propagated = ma * other.e + mb * self.e + self.e * other.e
         relative = self.r + other.r + self.r * other.r
         absolute = other.a * ma * (1 + self.r) + self.a * mb * (1 + other.r) + self.a * other.a
         exact = (other.e == 0 and _is_power_of_two(other.v)) or (self.e == 0 and _is_power_of_two(self.v))
-        return self._rounded(self.v * other.v, propagated, relative, absolute, exact_op=exact,
-                             sign=self.sign * other.sign)
+        if self.sign and other.sign:     # interval product from the ends: a mid-radius product loses the lower end
+            ends = self.low * other.low
+            value = (ends.union(ma * mb)) * (self.sign * other.sign)
+        else:
+            value = self.v * other.v
+        out = self._rounded(value, propagated, relative, absolute, exact_op=exact, sign=self.sign * other.sign)
+        # |a| <= M_a: |a~ b~ - a b| <= (w_a + w_b + w_a w_b) M_a M_b + aw_a m_b (1 + w_b) + aw_b m_a (1 + w_a) + aw_a aw_b
+        w = self.w + other.w + self.w * other.w
+        aw = self.aw * other.m * (1 + other.w) + other.aw * self.m * (1 + self.w) + self.aw * other.aw
+        if not exact:
+            w, aw = (1 + w) * (1 + U) - 1, aw * (1 + U) + (0 if self.low * other.low > TINY else ETA)
+        out._with_low(arb((self.low * other.low).lower()))
+        return out._with_magnitude(w, aw, self.m * other.m)
 
     __rmul__ = __mul__
 
     def __truediv__(self, other):
         other = FE.lift(other)
-        low = _lower_abs(other.v)
+        low = other.low
         if not low - other.e > 0:
             raise BoundFailure(f"divisor {other.v} (error {other.e}) may vanish on this box")
         quotient = self.v / other.v
@@ -247,7 +281,7 @@ def atan2(y: FE, x: FE) -> FE:
     """|atan2(y~, x~) - atan2(y, x)| <= sup (|x| e_y + |y| e_x)/(x^2 + y^2) over the widened balls."""
     y, x = FE.lift(y), FE.lift(x)
     wy, wx = _widen(y), _widen(x)
-    low = _lower_abs(wx**2 + wy**2)
+    low = _lower_abs(wx) * _lower_abs(wx) + _lower_abs(wy) * _lower_abs(wy)
     if not low > 0:
         raise BoundFailure("atan2 next to (0, 0) on this box")
     propagated = (_mag(wx) * y.e + _mag(wy) * x.e) / low
@@ -263,7 +297,9 @@ def atan2(y: FE, x: FE) -> FE:
 def hypot(x: FE, y: FE) -> FE:
     """|hypot(x~, y~) - hypot(x, y)| <= e_x + e_y (hypot is 1-Lipschitz in each argument)."""
     x, y = FE.lift(x), FE.lift(y)
-    return _library((x.v**2 + y.v**2).sqrt(), x.e + y.e, sign=1)
+    low = (_lower_abs(x.v) * _lower_abs(x.v) + _lower_abs(y.v) * _lower_abs(y.v)).sqrt()
+    high = (_mag(x.v) * _mag(x.v) + _mag(y.v) * _mag(y.v)).sqrt()
+    return _library(low.union(high), x.e + y.e, sign=1)
 
 
 class ErrorContext:

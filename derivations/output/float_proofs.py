@@ -40,7 +40,7 @@ from derivations.output.float_bounds import (
 PREC = 128                        # working precision of the analysis (u = 2^-53 must not be lost against 1)
 # the bounds the docstrings state (derivations/output/public_api.py): relative per component for omega,
 # absolute for the angle
-STATED = {"omega": 5e-15, "scattering_angle": 1.5e-14}
+STATED = {"omega": 5e-15, "scattering_angle": 1.5e-14, "omega_general": 6e-15}
 OMEGA_FLOOR = arb("1e-300")       # omega's absolute part (where sech t underflows), units of (|p|/d) c
 
 
@@ -60,16 +60,17 @@ class Proof:
 def box(lo: float, hi: float) -> arb:
     """[lo, hi] as a ball (non-negative when lo >= 0; a ball's rounding could reach below 0)."""
     ball = arb(lo).union(arb(hi))
-    return ball.nonnegative_part() if lo >= 0 else ball
+    return ball.nonnegative_part() if lo >= 0 and not ball >= 0 else ball
 
 
 def _in_u(x: arb) -> float:
     return float((x / U).upper())
 
 
-def t_boxes() -> list:
-    """[0, 1024]: 1/16 steps to 4, then binades (the relative bounds do not need narrow boxes)."""
-    return [box(i / 16, (i + 1) / 16) for i in range(64)] + [box(2.0**k, 2.0 ** (k + 1)) for k in range(2, 10)]
+def t_boxes(step: float = 1 / 16) -> list:
+    """[0, 1024]: steps of ``step`` to 4, then binades (the relative bounds do not need narrow boxes)."""
+    n = round(4 / step)
+    return [box(i * step, (i + 1) * step) for i in range(n)] + [box(2.0**k, 2.0 ** (k + 1)) for k in range(2, 10)]
 
 
 def d_boxes(n: int = 24) -> list:
@@ -81,7 +82,7 @@ def prove_omega(module) -> Proof:
     try:
         worst, floor, boxes = arb(0), arb(0), 0
         p = FE(box(1.0, 2.0))
-        for t in t_boxes():
+        for t in t_boxes(step=0.5):
             for d in d_boxes():
                 w1, w2 = module._omega(ErrorContext(), FE(t), p, FE(d))
                 scale = p.v / d * (d * d + 1).sqrt()
@@ -144,9 +145,11 @@ def prove_scattering_angle(module) -> Proof:
                  f"|Delta psi~ - Delta psi| <= {bound_u} u (absolute)")
 
 
-PROOFS = {"omega": prove_omega, "scattering_angle": prove_scattering_angle}
+PROOFS = {"omega": prove_omega, "scattering_angle": prove_scattering_angle}   # omega_general added below
 CLAIMS = {"omega": "omega: float64 within 5e-15 |omega_i| + 1e-300 (|p|/d) sqrt(d^2+1) of the exact omega",
-          "scattering_angle": "scattering_angle: float64 within absolute 1.5e-14 of the exact Delta psi"}
+          "scattering_angle": "scattering_angle: float64 within absolute 1.5e-14 of the exact Delta psi",
+          "omega_general": "omega_general: float64 within 6e-15 B + 1e-300 of the exact omega, B = (I11 I22 |I23| + "
+                           "I22 |I13| r + I11 I22 |I13| + I11 |I23| r)/D"}
 
 
 def method(proof: Proof) -> str:
@@ -170,6 +173,15 @@ def modelled(module, name: str):
         public = np.stack(module.omega(t, p, d))
         core = np.stack([np.broadcast_to(w, public.shape[1:]) for w in module._omega(FLOAT, t, p, d)])
         return public, core
+    if name == "omega_general":
+        rng = np.random.default_rng(3435)
+        entries = [rng.uniform(0.01, 3, 40), rng.uniform(0.01, 3, 40), rng.uniform(-2, 2, 40), rng.uniform(-2, 2, 40)]
+        t = MODEL_T[:, None]
+        public = np.stack(module.omega_general(t, *entries, -1))
+        size = np.maximum(np.maximum(entries[0], entries[1]), np.maximum(np.abs(entries[2]), np.abs(entries[3])))
+        I11, I22, I13, I23 = (e / size for e in entries)
+        core = module._omega_general(FLOAT, t, I11, I22, I13, I23, -np.sqrt(I11 * I22))
+        return public, np.stack([np.broadcast_to(w, public.shape[1:]) for w in core])
     p, d = MODEL_P[:, None], MODEL_D[None, :]
     x = np.pi * np.abs(p) / (2.0 * d)
     r = np.abs(p - 2.0 * np.round(p / 2.0))
@@ -200,3 +212,46 @@ def certificate(log: CertificateLog, module, name: str) -> Certificate:
             method_text = METHOD.format(n="?")
     return log.record(Certificate(CLAIMS[name], "round trip", method_text, Outcome.PASS if ok else Outcome.FAIL,
                                   elapsed[0], boxes, detail))
+
+
+def general_boxes() -> list:
+    """Scaled entries (the largest magnitude is 1): I11, I22 in [1e-3, 1], one of |I13|, |I23| in [1e-3, 1],
+    the other in [-1, 1]; relative bounds need no narrow boxes, only divisors kept away from 0."""
+    positive = [box(10.0 ** (-3 + k), 10.0 ** (-2 + k)) for k in range(3)]
+    off = [box(10.0 ** (-3 + k), 10.0 ** (-2 + k)) for k in range(3)]
+    off = off + [-b for b in off]
+    anything = [box(-1.0, 1.0)]
+    out = []
+    for I11 in positive:
+        for I22 in positive:
+            out += [(I11, I22, a, b) for a in off for b in anything] + [(I11, I22, a, b) for a in anything for b in off]
+    return out
+
+
+def prove_omega_general(module) -> Proof:
+    """omega_general: the run-time wrapper divides the entries by the largest magnitude (each scaled entry within
+    u of the exact ratio), r = sqrt(I11 I22) of the scaled entries, then the emitted core; the bound is in the
+    magnitude form |w~ - w| <= W u B + A with B = sum |k_j| (the docstring's B: |T|, |S| <= 1)."""
+    saved, ctx.prec = ctx.prec, PREC
+    try:
+        worst, floor, boxes = arb(0), arb(0), 0
+        for entries in general_boxes():
+            I11, I22, I13, I23 = (FE(b, _mag(b) * U, U, 0) for b in entries)
+            r = ErrorContext().sqrt(I11 * I22)
+            for t in t_boxes(step=0.5):
+                w1, w2 = module._omega_general(ErrorContext(), FE(t), I11, I22, I13, I23, r)
+                for w in (w1, w2):
+                    worst = max(worst, w.w, key=lambda a: a.upper())
+                    floor = max(floor, w.aw, key=lambda a: a.upper())
+                boxes += 1
+    finally:
+        ctx.prec = saved
+    bound_u = math.ceil(_in_u(worst))
+    if not floor < OMEGA_FLOOR:
+        raise BoundFailure(f"omega_general: absolute part {floor} of the bound exceeds {OMEGA_FLOOR}")
+    return Proof("omega_general", bound_u, boxes,
+                 "all t, entries scaled by the largest magnitude: I11, I22 >= 1e-3, max(|I13|, |I23|) >= 1e-3",
+                 f"|omega_i~ - omega_i| <= {bound_u} u B + 1e-300")
+
+
+PROOFS["omega_general"] = prove_omega_general
