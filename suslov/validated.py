@@ -1,7 +1,7 @@
 """Rigorous enclosures, monodromy and the Galois group of any body (section 5.1, Theorem 5.2, eq:o12, Conclusion).
 
 The angle between the limit rotation axes of the ss solution (``gamma(-oo) = -n``,
-``Delta psi = arccos(-<gamma(+oo), n>)``), as a python-flint ball, for any inertia tensor
+``cos Delta psi = -<gamma(+oo), n>``, the angle from its cosine and its sine), as a python-flint ball, for any inertia tensor
 with I12 = 0 and a = e3 -- I13 != 0 included.  Two routes: the certified closed form of every body
 (``method="closed_form"``, the default: Gauss's equation in s = sinh t, ``derivations/sections/general_angle.py``)
 and, as the independent check, validated integration (``method="integration"``).  The coefficients

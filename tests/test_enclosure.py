@@ -221,3 +221,42 @@ def test_float_gamma_basis_inside_the_ball_widened_by_its_bound(t, p, d):
         for j in range(3):
             assert float(balls[i][j].rad()) < 1e-30
             assert abs(float(value[i, j]) - float(balls[i][j].mid())) <= bound, (i, j)
+
+
+def theorem_52_angle(p, d, dps=60):
+    """Delta psi in [0, pi] from Theorem 5.2 in mpmath, cos(Delta psi/2) = cos(pi p/2)/cosh(pi p/(2d)) (independent route)."""
+    with mpmath.workdps(dps):
+        p, d = mpmath.mpf(p), mpmath.mpf(d)
+        angle = 2 * mpmath.acos(mpmath.cos(mpmath.pi * p / 2) / mpmath.cosh(mpmath.pi * p / (2 * d)))
+        return 2 * mpmath.pi - angle if angle > mpmath.pi else angle
+
+
+@pytest.mark.parametrize("I23,p", [("-1/3", 3), ("-1/2", 2), ("-100", "0.01")], ids=["pi", "between", "near0"])
+def test_integration_keeps_the_width_of_the_data_at_pi_and_next_to_0(I23, p):
+    """I11 = 2, I22 = 1 (d = 1), I13 = 0: p = 1/|I23|; at odd p Delta psi = pi exactly (issue 34)."""
+    enclosure = scattering_angle_enclosure("2", "1", "0", I23, digits=30, method="integration")
+    assert enclosure.width < 1e-28
+    reference = theorem_52_angle(p, 1)
+    with mpmath.workdps(60):
+        middle = mpmath.mpf(arb(enclosure.angle).mid().str(45, radius=False))
+        assert abs(middle - reference) <= float(enclosure.angle.rad()) + mpmath.mpf(10) ** -44
+
+
+@pytest.mark.parametrize("angle", ["0", "1e-20", "1", "2.5", "pi - 1e-20", "pi"])
+def test_angle_from_cosine_and_sine_keeps_the_radius(angle):
+    from suslov.kernel.enclosure import _angle_from_both
+
+    with mpmath.workdps(80):
+        exact = mpmath.pi - mpmath.mpf("1e-20") if angle == "pi - 1e-20" else (
+            +mpmath.pi if angle == "pi" else mpmath.mpf(angle))
+        cos_s, sin_s, exact_s = (mpmath.nstr(x, 70) for x in (mpmath.cos(exact), mpmath.sin(exact), exact))
+    ctx.prec = 200
+    try:
+        radius = arb("1e-40")
+        cos_ball = (arb(cos_s) + arb(0, 1) * radius).intersection(arb(0, 1))
+        sin_ball = (arb(sin_s) + arb(0, 1) * radius).intersection(arb(0.5, 0.5))
+        enclosed = _angle_from_both(cos_ball, sin_ball)
+        assert enclosed.overlaps(arb(exact_s))
+        assert float(enclosed.rad()) < 1e-38        # the cosine alone would give about 1e-20 at 0 and pi
+    finally:
+        ctx.prec = 53

@@ -234,9 +234,13 @@ EXAMPLE_P3 = Printed(
 )
 
 
-def printed_example(p: int, t, d):
-    """The printed real solutions for p = 1 and p = 3 (rows gamma^(1..3)), evaluated with mpmath."""
-    import mpmath as mp
+def printed_example(p: int, t, d, ops=None):
+    """The printed real solutions for p = 1 and p = 3 (rows gamma^(1..3)), evaluated with mpmath, or with
+    ``ops`` (an object with sqrt, sech, tanh, cos, sin, exp, cosh, sinh: the exact substitution x = e^t of
+    ``derivations.sections.printed_examples`` uses this same transcription)."""
+    import mpmath
+
+    mp = mpmath if ops is None else ops
 
     c = mp.sqrt(d * d + 1)
     S, T = mp.sech(t), mp.tanh(t)
@@ -339,4 +343,11 @@ CONCLUSION_EVEN = Printed(
     "Conclusion",
     r"I_{13}=0,\ p\ \text{even}:\ \text{all solutions meromorphic},\ \text{not Liouvillian}",
     "Conclusion",
+)
+
+# proof of Proposition 4.1: "one can check that I11^2 - (J2 - J3)^2 > 0" for the root with sign -
+PROP41_TRIANGLE = Printed(
+    "Proposition 4.1 (proof, triangle)",
+    r"I_{11}^2-(J_2-J_3)^2>0",
+    "section 4, proof of Proposition 4.1",
 )

@@ -63,10 +63,10 @@ from derivations.core.result import DerivationResult
 from derivations.sections.meromorphic_printed import (
     coefficient_tables,
     compare_poly_f2,
-    compare_printed_examples,
     printed_comparisons,
     written_out,
 )
+from derivations.sections.printed_examples import compare_printed_examples
 from derivations.sections.meromorphic_ring import (  # noqa: F401  (re-exported: the ring helpers the tests and roundtrip use)
     CTX,
     DD,

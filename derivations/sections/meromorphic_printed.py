@@ -1,9 +1,9 @@
 """The odd-p bases against the paper's printed forms, and the forms the document prints (sections 5.1, 6.1, 6.2).
 
-Labels: ``pol_sol``, ``gam1``, ``gam2``, ``gam3``, ``poly_F2`` and the printed examples for
-p = 1 and p = 3 (section 6.2).  Split from :mod:`derivations.sections.meromorphic`, which certifies the
-bases; here they are compared with what is printed (exact identities where the printed form is a
-formula, mpmath evidence at high precision where it is an example written with decimals), written
+Labels: ``pol_sol``, ``gam1``, ``gam2``, ``gam3``, ``poly_F2`` (the printed examples for p = 1 and
+p = 3, section 6.2, are in :mod:`derivations.sections.printed_examples`).  Split from
+:mod:`derivations.sections.meromorphic`, which certifies the bases; here they are compared with what is
+printed (exact identities), written
 out in tanh/sech for the document, and tabulated (the coefficients c_j of F1 and of F, Fhat).
 """
 from __future__ import annotations
@@ -122,56 +122,6 @@ def basis_mp(basis: Basis, t, d):
     phase = mpmath.expjpi(basis.p * t / (d * mpmath.pi))
     G = [phase * v / (k * den) for v in G]
     return [g1, [mpmath.re(v) for v in G], [mpmath.im(v) for v in G]]
-
-
-def compare_printed_examples(log: CertificateLog, result: DerivationResult, bases: dict) -> None:
-    """The printed p = 1 and p = 3 bases: solutions, orthonormal, and how they relate to ours."""
-    from derivations.core.numeric import corroborate
-
-    for p, printed in ((1, paper.EXAMPLE_P1), (3, paper.EXAMPLE_P3)):
-        if p not in bases:
-            continue
-        basis = bases[p]
-        ranges = {"t": (-2.5, 2.5), "d": (0.2, 3.0)}
-
-        def poisson(point, p=p):
-            t, d = point["t"], point["d"]
-            a, c = p / d, mpmath.sqrt(d * d + 1)
-            w1, w2 = a * mpmath.tanh(t), -a * c * mpmath.sech(t)
-            out = []
-            for r in range(3):
-                v = paper.printed_example(p, t, d)[r]
-                dv = [mpmath.diff(lambda tt, j=j: paper.printed_example(p, tt, d)[r][j], t) for j in range(3)]
-                out += [dv[0] + w2 * v[2], dv[1] - w1 * v[2], dv[2] - (w2 * v[0] - w1 * v[1])]
-            return out, 1
-
-        def relation(point, p=p):
-            """ours(t) . printed(t)^T is constant: compare t with t = 0.31; gamma^(1) rows equal."""
-            d = point["d"]
-            out = []
-            mats = []
-            for t in (point["t"], mpmath.mpf("0.31")):
-                ours = mpmath.matrix(basis_mp(basis, t, d))
-                theirs = mpmath.matrix(paper.printed_example(p, t, d))
-                mats.append(ours * theirs.T)
-            gram = mpmath.matrix(paper.printed_example(p, point["t"], d))
-            gram = gram * gram.T - mpmath.eye(3)
-            out += [mats[0][i, j] - mats[1][i, j] for i in range(3) for j in range(3)]
-            out += [mats[0][0, 0] - 1] + [gram[i, j] for i in range(3) for j in range(3)]
-            return out, 1
-
-        c_sol = corroborate(log, f"printed p = {p} example: the three rows solve the Poisson equations (mpmath.diff)",
-                            printed.label, poisson, ranges, seed=70 + p, points=4)
-        c_rel = corroborate(log, f"printed p = {p} example: orthonormal, gamma^(1) equal to ours, and a constant "
-                            "orthogonal matrix away from ours", printed.label, relation, ranges, seed=80 + p, points=4)
-        d0 = mpmath.mpf("0.7")
-        R = mpmath.matrix(basis_mp(basis, mpmath.mpf("0.31"), d0)) * mpmath.matrix(
-            paper.printed_example(p, mpmath.mpf("0.31"), d0)).T
-        handed = "right-handed (det +1), like ours" if mpmath.det(R) > 0 else "left-handed (det -1); ours is right-handed"
-        result.errata.append(erratum(
-            printed, "confirmed", r"\text{our basis }=R\cdot\text{printed},\ R\text{ constant orthogonal}",
-            f"the printed rows solve eq:ps and are orthonormal; gamma^(1) coincides with ours, gamma^(2), gamma^(3) "
-            f"differ by a constant rotation in their plane; the printed basis is {handed}", c_sol, c_rel))
 
 
 TANH, SECH = sp.tanh(sp.Symbol("t")), sp.sech(sp.Symbol("t"))

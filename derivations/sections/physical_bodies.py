@@ -22,6 +22,9 @@ whose eigenvalues satisfy the triangle inequalities and which satisfies eq:necc1
   satisfy the triangle inequalities, and I22 (I11 - I22)/I23^2 = p^2 (exact rational arithmetic);
   in general I22 I33 - I23^2 = I22 (p^2 I33 - Delta)/p^2 > 0 whenever p^2 I33 > Delta, which
   the proof's own assumption I33 + I22 > I11 gives for every p >= 1 (exact identity).
+
+* **The proof's last step**, I11^2 - (J2 - J3)^2 > 0, is false in general; its exact condition and a
+  certified counterexample are in ``prop41_triangle``.
 """
 from __future__ import annotations
 
@@ -39,6 +42,7 @@ from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.paper import PROP41
 from derivations.core.symbols import I11, I22, I23, I33, p
+from derivations.sections.prop41_triangle import triangle_errata
 
 ROOT = sp.Symbol("s")          # s = sqrt(p^2 + 4 I33 (I11 - I22))
 DELTA = I11 - I22
@@ -125,3 +129,4 @@ def proof_errata(log: CertificateLog, result) -> None:
         "the proof's I33 + I22 > I11). The second display has 2 I33 under the root where the first gives 4 I33. "
         "The proposition holds: certified example bodies for every p in the monodromy section",
         c_quadratic, c_printed_det1, c_not_corrected, c_second, c_second_fixed, c_linear))
+    result.errata.append(triangle_errata(log, ROOT, QUADRATIC_DOMAIN, FIELD_DOMAIN, minus_root))

@@ -21,12 +21,11 @@ Residue of ``A(t)`` (``eq:at``) at ``t0 = i pi/2``: with ``x = e^t``,
 ``tanh t = (x^2-1)/(x^2+1)`` and ``sech t = 2x/(x^2+1)``, and
 ``Res_t f = Res_{x=i} f(x)/x``, a rational residue at a simple pole computed
 exactly as ``N(i)/D'(i)``.  (``sympy.residue(tanh(t), t, I*pi/2)`` returns 0 in
-SymPy 1.14, which is wrong; the value is 1.  The numeric corroboration below
-evaluates ``eps * omega(i pi/2 + eps)`` with mpmath.)
+SymPy 1.14, which is wrong; the value is 1.  The second route, ``eps A(i pi/2 + eps) -> A0``, is an
+exact Laurent expansion: ``_laurent_limit``.)
 """
 from __future__ import annotations
 
-import mpmath
 import symengine as se
 import sympy as sp
 
@@ -43,7 +42,7 @@ from derivations.core.differential import (
 from derivations.core.emit import Emitted
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
-from derivations.core.numeric import corroborate, mp_function, ode_residual
+from derivations.core.exp_substitution import certify_ode_in_exp
 from derivations.core.result import DerivationResult
 from derivations.core.symbols import I11, I13, I22, I23, I33, c, d, from_symengine, p, r, w1, w2, x
 from derivations.core.typeset import latex
@@ -80,6 +79,28 @@ def residue_at_i_pi_half(expr: sp.Expr) -> sp.Expr:
     if slope == 0:
         raise ValueError("pole at t = i pi/2 is not simple")
     return sp.expand(num.subs(x, sp.I) / slope)
+
+
+def _laurent_limit(log: CertificateLog, A: sp.Matrix, A0: sp.Matrix):
+    """eps A(i pi/2 + eps) = A0 + O(eps^2), exactly (was a 60-digit mpmath spot check).
+
+    With y = e^eps, e^(i pi/2 + eps) = i y: tanh(i pi/2 + eps) = coth eps and sech(i pi/2 + eps) =
+    -i csch eps (identities in Q(y)(i)); eps coth eps = 1 + eps^2/3 + O(eps^4) and eps csch eps =
+    1 - eps^2/6 + O(eps^4) (their Laurent series, Bernoulli numbers, by SymPy's series); A is linear
+    and homogeneous in (T, S), so eps A(i pi/2 + eps) = A(eps coth eps, -i eps csch eps) ->
+    A(1, -i), which equals A0."""
+    y, eps, lam_ = sp.symbols("y eps lambda_h")
+    z = sp.I * y
+    identities = [(z**2 - 1) / (z**2 + 1) - (y**2 + 1) / (y**2 - 1), 2 * z / (z**2 + 1) + sp.I * 2 * y / (y**2 - 1)]
+    identities += [sp.series(eps * sp.coth(eps), eps, 0, 4).removeO() - (1 + eps**2 / 3),
+                   sp.series(eps * sp.csch(eps), eps, 0, 4).removeO() - (1 - eps**2 / 6)]
+    identities += list(A.subs({T: lam_ * T, S: lam_ * S}, simultaneous=True) - lam_ * A)
+    identities += list(A.subs({T: 1, S: -sp.I}, simultaneous=True) - A0)
+    return certify_zero(
+        log, "eps A(i pi/2 + eps) -> A0: tanh(i pi/2 + eps) = coth eps, sech(i pi/2 + eps) = -i csch eps "
+             "(y = e^eps), eps coth eps = 1 + eps^2/3 + O(eps^4), eps csch eps = 1 - eps^2/6 + O(eps^4) "
+             "(exact Laurent series), A linear homogeneous in (tanh, sech) and A(1, -i) = A0", paper.AM2.label,
+        identities, Domain("Q(p,d,y,eps,lambda)[c]/(c^2-d^2-1)", (C_EXT,)))
 
 
 def poisson_matrix(omega1, omega2) -> sp.Matrix:
@@ -163,13 +184,11 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     solution = {v: sp.expand(general[v].subs(SUBSTITUTION)) for v in (w1, w2)}
     c_sol = certify_zero(log, "omega1 = (p/d) tanh t, omega2 = -(p/d) c sech t solve eq:sysfin, both branches of c",
                          "omegas", ode_residuals(PD_RING, solution, sysfin), PD_RING.domain)
-    numeric_certs = []
-    for sign in (1, -1):
-        closed = [PD_RING.as_function_of_t(solution[v]).subs(c, sign * sp.sqrt(d**2 + 1)) for v in (w1, w2)]
-        residual = ode_residual(closed, [sysfin[w1], sysfin[w2]], [w1, w2], t, [p, d])
-        numeric_certs.append(corroborate(
-            log, f"omega(t) solves eq:sysfin (c = {'+' if sign > 0 else '-'}sqrt(d^2+1), mpmath.diff)", "omegas",
-            residual, {"t": (-4, 4), "p": (0.3, 9), "d": (0.05, 5)}, seed=40 + sign))
+    # second exact route (was an mpmath.diff spot check): rational in x = e^t, d/dt = x d/dx
+    numeric_certs = [certify_ode_in_exp(
+        log, "omega(t) solves eq:sysfin, both branches of c, in x = e^t (tanh t = (x^2-1)/(x^2+1), "
+             "sech t = 2x/(x^2+1), d/dt = x d/dx)", "omegas",
+        [solution[w1], solution[w2]], [sysfin[w1], sysfin[w2]], [w1, w2], "Q(p,d)(x)[c]/(c^2-d^2-1)", (C_EXT,))]
     c_form = certify_zero(log, "printed omegas form w1 = a tanh t, w2 = -a c sech t with a = p/d", "omegas",
                           [solution[w1] - (p / d) * T, solution[w2] + (p / d) * c * S], PD_RING.domain)
     result.formula("omegas", "omegas", "Angular velocity ($a=p/d$, $c=\\sqrt{d^2+1}$)",
@@ -206,23 +225,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     A0 = A.applyfunc(residue_at_i_pi_half)
     c_am2 = certify_zero(log, "residue of A(t) at t = i pi/2 is eq:am2", paper.AM2.label,
                          list(A0 - paper.AM2_MATRIX), PD_DOMAIN)
-    omega_t = [sp.lambdify((t, p, d), PD_RING.as_function_of_t(solution[v]).subs(c, sp.sqrt(d**2 + 1)), "mpmath")
-               for v in (w1, w2)]
-    A0_fun = [mp_function(A0[0, 2].subs(c, sp.sqrt(d**2 + 1)), [p, d]), mp_function(A0[1, 2], [p, d])]
-
-    def residue_residual(point):
-        # The pole makes the evaluation ill-conditioned: evaluate at triple
-        # precision so that eps * omega keeps 30+ correct digits; the Laurent
-        # remainder is O(eps^2) = 10^-(2 dps/3).
-        eps = mpmath.mpf(10) ** (-(mpmath.mp.dps // 3))
-        with mpmath.workdps(3 * mpmath.mp.dps):
-            t0 = mpmath.mpc(0, mpmath.pi / 2) + eps
-            got = [eps * (-omega_t[1](t0, point["p"], point["d"])), eps * omega_t[0](t0, point["p"], point["d"])]
-        want = [A0_fun[0](point["p"], point["d"]), A0_fun[1](point["p"], point["d"])]
-        return [g - w for g, w in zip(got, want)], max(abs(w) for w in want)
-
-    c_res_num = corroborate(log, "eps * A(i pi/2 + eps) -> A0 (mpmath, eps = 10^-(dps/3))", paper.AM2.label,
-                            residue_residual, {"p": (0.5, 7), "d": (0.1, 4)}, seed=61, dps=60)
+    c_res_num = _laurent_limit(log, A, A0)
     lam_poly = sp.expand((A0 - lam * sp.eye(3)).det())
     c_char = certify_zero(log, "det(A0 - lambda) = -(lambda^3 - p^2 lambda): eigenvalues 0, +-p", "eq:ro",
                           lam_poly + lam**3 - p**2 * lam, PD_DOMAIN)

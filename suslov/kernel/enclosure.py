@@ -42,8 +42,11 @@ The enclosure, in three rigorous pieces:
    ``x dg/dx = g x (-omega(x))`` (same recurrence and bound, ``omega(x) = u (1-x^2)/(1+x^2) + v 2x/(1+x^2)``).
    Two solutions keep their inner product (the flow is a rotation), so
    ``<gamma(+oo), n> = <gamma(s1), g(s1)>``: no integration to +oo.  The angle is
-   ``Delta psi = arccos(-<gamma(s1), g(s1)>)``, evaluated as an arctangent (finite near cos = -1, where
-   odd p gives pi) and clipped to [0, pi] (``|gamma| = |g| = 1`` exactly).
+   ``cos Delta psi = -<gamma(s1), g(s1)>`` and ``sin Delta psi = |gamma(s1) x g(s1)|`` (the cross
+   product of two solutions is a solution: its norm is kept too), each widened by ``delta |g|``; the
+   angle is the arctangent of whichever quotient of the two is bounded, so next to 0 and pi (odd p)
+   it keeps the width of the data (arccos alone halves the digits there), clipped to [0, pi]
+   (``|gamma| = |g| = 1`` exactly).
 
 References for the method: Cauchy majorants for linear ODEs with analytic coefficients as in
 M. Mezzarobba, arXiv:1607.01967 (here in their simplest form: a bound of the coefficient matrix on a
@@ -251,6 +254,27 @@ def _majorant_tail(b: arb, k: int, W: arb, power: arb, x: arb) -> arb | None:
     return (arb(3).sqrt() * following * power * x / (1 - q * x)).abs_upper()
 
 
+def _angle_from_both(cos_angle: arb, sin_angle: arb) -> arb:
+    """Delta psi in [0, pi] from balls containing its cosine and its (non-negative) sine.
+
+    Next to Delta psi = 0 or pi the cosine alone loses half the digits (arccos has infinite slope
+    at +-1: a cosine known to r gives the angle to sqrt(2 r)); the arctangent of sin/cos or cos/sin,
+    whichever quotient is bounded, keeps the width of the data.  Intersected with the
+    cosine-only enclosure (both contain the angle)."""
+    from_cosine = _angle_from_cosine(cos_angle)
+    if not sin_angle > 0 and not (cos_angle < 0 or cos_angle > 0):
+        return from_cosine
+    if cos_angle < 0 and abs(cos_angle) >= sin_angle:
+        angle = arb.pi() - (sin_angle / -cos_angle).atan()
+    elif cos_angle > 0 and cos_angle >= sin_angle:
+        angle = (sin_angle / cos_angle).atan()
+    elif sin_angle > 0:
+        angle = arb.pi() / 2 - (cos_angle / sin_angle).atan()
+    else:
+        return from_cosine
+    return angle.intersection(from_cosine)
+
+
 def _angle_from_cosine(cos_angle: arb) -> arb:
     """arccos on [-1, 1] as an arctangent of sin/cos (finite slope at cos = +-1 from inside), in [0, pi]."""
     sine = (1 - cos_angle**2).nonnegative_part().sqrt()        # 1 - c^2 >= 0 exactly
@@ -345,7 +369,11 @@ def ss_angle_enclosure(u, v, digits: float = 30, prec: int | None = None, step: 
         along = sum((y[k] * g[k] for k in range(3)), arb(0))
         along = along + _UNIT * (delta * (1 + tail_plus)).abs_upper()    # |<e, g>| <= |e| |g|
         cos_angle = (-along).intersection(arb(0, 1))
-        angle = _angle_from_cosine(cos_angle)
+        # sin Delta psi = |y x g| (y, g unit solutions at angle pi - Delta psi); |e x g| <= |e| |g|
+        cross = (y[1] * g[2] - y[2] * g[1], y[2] * g[0] - y[0] * g[2], y[0] * g[1] - y[1] * g[0])
+        norm = sum((k * k for k in cross), arb(0)).nonnegative_part().sqrt()
+        sin_angle = (norm + _UNIT * (delta * (1 + tail_plus)).abs_upper()).intersection(arb(0.5, 0.5))
+        angle = _angle_from_both(cos_angle, sin_angle)
         s0, s1 = -float(S), float(S)
         return AngleEnclosure(Ball(angle), Ball(cos_angle), (s0, s1), steps, order, ctx.prec,
                               {"tail_minus": float(tail_minus.abs_upper()), "steps": float(step_error.abs_upper()),

@@ -1,0 +1,104 @@
+"""What the proven float64 error bounds cost the build (issue 34), beside the sampled checks they replace.
+
+Side by side, in one run, on the committed generated module:
+
+* the proofs (``derivations.output.float_proofs``: the emitted ``_omega`` / ``_scattering_angle`` on error
+  balls over their boxes, plus the bit-for-bit check of the public function against the analysed composition);
+* the sampled round-trip checks they replaced (float64 against the mpmath twin at 40 digits at the old
+  seeded points; the loops of the old ``float_paths.check_omega`` / ``check_scattering_angle``).
+
+The share is taken against a cold default build on both cores, ~40 s (``bench/results/build.md``: 40.1 s
+at pmax 15, all cores); target: the proofs under 20% of it.
+
+Run: ``python bench/bench_float_bounds.py`` (about 30 s); writes ``bench/results/float_bounds.md`` and
+``.json``.  Medians of 5 runs on a shared 2-core machine.
+"""
+from __future__ import annotations
+
+import json
+import math
+import platform
+import sys
+from pathlib import Path
+
+import mpmath
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "bench"))
+
+from machine_info import cpu_name  # noqa: E402
+from timing import median_seconds  # noqa: E402
+
+from derivations.core.certificates import CertificateLog  # noqa: E402
+from derivations.output import float_proofs  # noqa: E402
+from generated import suslov_formulas as sf  # noqa: E402
+
+COLD_BUILD_SECONDS = 40.1          # bench/results/build.md, pmax 15, all cores
+HARD_T = (-1e4, -700.0, -30.0, -1.0, -1e-8, 0.0, 1e-8, 0.3, 5.0, 711.0, 1e4)
+HARD_D = (1e-3, 0.5, 3.0, 1e3)
+
+
+def sampled_omega():
+    """The old sampled check: 12 (p, d) x 11 t against omega_mp at 40 digits."""
+    rng = np.random.default_rng(1201)
+    cases = [(1, 0.5), (3, 0.5), (15, 2.0), (-4, 1.0), (2.5, 1e-3), (7, 1e3)]
+    cases += [(float(rng.uniform(-40, 40)), float(10 ** rng.uniform(-3, 3))) for _ in range(6)]
+    worst = 0.0
+    for p, d in cases:
+        w1, w2 = sf.omega(np.array(HARD_T), p, d)
+        bound = 4e-16 * abs(p) / d * math.sqrt(d * d + 1)
+        for i, t in enumerate(HARD_T):
+            e1, e2 = sf.omega_mp(t, p, d, dps=40)
+            worst = max(worst, float(abs(w1[i] - e1) / bound), float(abs(w2[i] - e2) / bound))
+    return worst
+
+
+def sampled_angle():
+    """The old sampled check: 25 p x 8 d against scattering_angle_mp at 40 digits."""
+    rng = np.random.default_rng(1500)
+    ps = [1.0, 3.0, 2.0, 0.5, 2.5, 1 + 1e-13, 3 - 1e-13, 2 + 1e-13, 7.3, 5.6, 1.9, -2.7, -0.6]
+    ps += [float(v) for v in rng.uniform(-60, 60, 12)]
+    ds = list(HARD_D) + [float(v) for v in 10 ** rng.uniform(-3, 3, 4)]
+    values = sf.scattering_angle(np.array(ps)[:, None], np.array(ds)[None, :])
+    worst = 0.0
+    for i, p in enumerate(ps):
+        for j, d in enumerate(ds):
+            exact = sf.scattering_angle_mp(p, d, dps=40)
+            worst = max(worst, float(abs(values[i, j] - exact) / (1e-13 * abs(exact))) if exact else 0.0)
+    return worst
+
+
+def main():
+    rows = []
+    for name, sampled in (("omega", sampled_omega), ("scattering_angle", sampled_angle)):
+        proof = float_proofs.PROOFS[name](sf)
+        proof_seconds = median_seconds(lambda name=name: float_proofs.certificate(CertificateLog(derivation="bench"),
+                                                                                   sf, name), 5)
+        with mpmath.workdps(15):
+            sampled_seconds = median_seconds(sampled, 5)
+        rows.append({"function": name, "boxes": proof.boxes, "proven": proof.statement,
+                     "proof_seconds": proof_seconds, "sampled_seconds": sampled_seconds})
+    total = sum(r["proof_seconds"] for r in rows)
+    machine = f"{cpu_name()}, {platform.python_version()}, 2 cores (shared)"
+    lines = ["# Proven float64 error bounds: what they cost the build", "",
+             f"Machine: {machine}. Command: `python bench/bench_float_bounds.py`. Medians of 5 runs.", "",
+             "| function | boxes | proven bound | proof (s) | old sampled check (s) | ratio |",
+             "| --- | ---: | --- | ---: | ---: | ---: |"]
+    for r in rows:
+        proven = r["proven"].replace("|", "\\|")     # a table cell
+        lines.append(f"| {r['function']} | {r['boxes']} | {proven} | {r['proof_seconds']:.2f} | "
+                     f"{r['sampled_seconds']:.2f} | {r['proof_seconds'] / r['sampled_seconds']:.1f} |")
+    lines += ["", f"All proofs: {total:.2f} s = {100 * total / COLD_BUILD_SECONDS:.1f}% of a cold default build on "
+              f"both cores ({COLD_BUILD_SECONDS} s, bench/results/build.md); target under 20%.", ""]
+    out = ROOT / "bench" / "results"
+    (out / "float_bounds.md").write_text("\n".join(lines), encoding="utf-8")
+    (out / "float_bounds.json").write_text(json.dumps({"machine": machine, "rows": rows, "total_seconds": total,
+                                                       "cold_build_seconds": COLD_BUILD_SECONDS}, indent=1) + "\n",
+                                           encoding="utf-8")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
