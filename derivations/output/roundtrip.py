@@ -51,8 +51,8 @@ from derivations.core.certificates import (
 from derivations.core.recipe_rings import BASIS_RING, INTEGRAL_RING
 
 SECTION = "roundtrip"
-EXACT_METHOD = ("exact zero test of the emitted code evaluated with a SymPy context (numerator expanded in "
-                "Q(arguments)[tanh t, sech t, roots as indeterminates])")
+EXACT_METHOD = ("exact zero test of the emitted code evaluated with a SymPy context (numerator expanded over the "
+                "rationals in the arguments, with $tanh(t)$, $sech(t)$ and the roots as indeterminates)")
 EVIDENCE = "numeric evidence (not a certificate): "
 _counter = itertools.count()
 

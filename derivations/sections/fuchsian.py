@@ -47,7 +47,7 @@ REQUIRES = ("model", "residue")
 x, j, lam = sp.symbols("x j lambda")
 I_EXT = Extension(j, sp.Integer(-1), "j = i = sqrt(-1)")
 FUCHS = Domain("Q(I11,I22,I13,I23,x)[r,i]/(r^2-I11 I22, i^2+1)", (R_EXT, I_EXT))
-PLAIN = Domain("Q(w1,w2,w3,lambda)")
+PLAIN = Domain("Q(w1,w2,w3,lam)")
 # (label, I11, I22, I13, I23, what the case is): I13 = 0 with odd, even and non-integer p, and two general bodies
 BODIES = (("odd p = 1", "2", "1", "0", "-1"), ("odd p = 3", "2", "1", "0", "-1/3"), ("even p = 2", "2", "1", "0", "-1/2"),
           ("non-integer p = 5/2", "2", "1", "0", "-2/5"), ("general", "5/4", "1", "3/10", "-1/2"),

@@ -68,7 +68,7 @@ z = sp.Symbol("z")
 cc = sp.Symbol("c", positive=True)
 m = sp.Symbol("m", positive=True)
 SPHERE = Extension(g3, 1 - g1**2 - g2**2, "|gamma| = 1")
-SPHERE_DOMAIN = Domain("Q(omega)(gamma1,gamma2)[gamma3,i]/(|gamma|^2-1, i^2+1)", (SPHERE,))
+SPHERE_DOMAIN = Domain("Q(omega)(gamma1,gamma2)[gamma3,i]/(gamma1^2 + gamma2^2 + gamma3^2 - 1, i^2+1)", (SPHERE,))
 ZC = Domain("Q(c,p)(z)[i]")
 
 
@@ -257,7 +257,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     udot = -((B1 * W1 + A1 * W) * Cs * W - W1 * (C1 * W + Cs * W1)) / (Cs * W) ** 2
     c_lin = certify_zero(log, "u = -w'/(C w) solves the Riccati equation iff w'' - B1 w' - A1 w = 0 "
                          "(A1 = -A C, B1 = B + C'/C)", "eq:r2, eq:lin", udot - (As + Bs * u + Cs * u**2),
-                         Domain("Q(W,W',C,C',A,B)"))
+                         Domain("Q(W,Wp,C,Cp,A,B)"))
     result.formula("riccati", "eq:rig, eq:ABC, eq:lin", "Riccati form and the linear equation",
                    r"\dot u=A+Bu+Cu^2,\ A=\tfrac12(\omega_2-i\omega_1),\ B=0,\ C=\tfrac12(\omega_2+i\omega_1);\quad"
                    r"\ddot w-B_1\dot w-A_1w=0,\ A_1=-AC,\ B_1=B+\dot C/C", c_ric, c_gi, c_lin)

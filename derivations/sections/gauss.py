@@ -71,7 +71,7 @@ KAPPA_EXT = Extension(kappa, -W_MINUS2 / 4, "kappa = (i/2) w_-, either root")
 MU_EXT = Extension(mu, -W_PLUS2 / 4, "mu = (i/2) w_+, either root")
 COMPLEX = Domain("Q(u, v, s)[i]/(i^2+1)", (I_EXT,))
 TS = Domain("Q(u, v)[T][S]/(S^2+T^2-1)", (Extension(S, 1 - T**2, "S = sech t"),))
-GAUSS = Domain("Q(U, v1, v2, z)[kappa, mu, i]/(kappa^2 + w_-^2/4, mu^2 + w_+^2/4, i^2+1)", (KAPPA_EXT, MU_EXT, I_EXT))
+GAUSS = Domain("Q(U, v1, v2, z)[kappa, mu, i]/(kappa^2 + w_m^2/4, mu^2 + w_p^2/4, i^2+1)", (KAPPA_EXT, MU_EXT, I_EXT))
 BODY = Domain("Q(I11,I22,I13,I23)[r, i]/(r^2-I11 I22, i^2+1)", (R_EXT, I_EXT))
 PLAIN = Domain("Q(a, b, g)")
 
@@ -148,7 +148,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     c_half = certify_zero(log, "det(lambda + S(w)) = lambda^2 + (w.w)/4: the lift's residues have eigenvalues "
                           "+-(i/2) sqrt(w.w), half the cross product's; exponent differences kappa = (i/2) w_- at "
                           "s = i, mu = (i/2) w_+ at s = -i, i U at s = oo", "derived", sp.expand(char),
-                          Domain("Q(w, lambda)[i]/(i^2+1)", (I_EXT,)))
+                          Domain("Q(w, lam)[i]/(i^2+1)", (I_EXT,)))
     R = sp.Matrix([[sp.Symbol("cth"), sp.Symbol("sth"), 0], [-sp.Symbol("sth"), sp.Symbol("cth"), 0], [0, 0, 1]])
     rot = lambda vec: list(sp.Matrix([vec]) * R)  # noqa: E731
     c_frame = certify_zero(log, "(a R) x (b R) = (a x b) R for a rotation R about e3: in the frame u = (U, 0, 0) the "

@@ -120,7 +120,7 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     ad = (tau * taup * (m + 1 / m) - tau**2 - taup**2) / (m - 1 / m) ** 2
     c_diag = certify_zero(log, "a + d = tau and m a + d/m = tau' give a d = (tau tau' (m + 1/m) - tau^2 - tau'^2)/"
                           "(m - 1/m)^2 (M_i = [[a, b], [c, d]], M_oo = diag(m, 1/m))", "derived",
-                          [m * a_sol + d_sol / m - taup, a_sol * d_sol - ad], Domain("Q(tau, tau', m)"))
+                          [m * a_sol + d_sol / m - taup, a_sol * d_sol - ad], Domain("Q(tau, tau_p, m)"))
     Mi = sp.Matrix([[A_, B_], [C_, (1 + B_ * C_) / A_]])          # det M_i = 1
     H = sp.diag(1, -1)
     conj = Mi * H * Mi.inv()
