@@ -165,15 +165,15 @@ def certify_integral_core(log: CertificateLog, module, objects: dict) -> list:
             expected = _integral_at(ff, d_point)
             differing += [f"first_integral_coefficients(p, 3/7)[{name!r}]" for name in ("P1", "P2", "P3")
                           if public[name] != expected[name]]
-        out.append(_record(log, f"p = {p}: first_integral's exact core reproduces the certified P1~, M2, M3, K, Den, "
-                           "and first_integral_coefficients(p, 3/7) the certified P1, P2, P3", "round trip",
-                           "exact equality in Z[d,w1,w2] (python-flint) and in Q", not differing, elapsed[0],
+        out.append(_record(log, f"$p = {p}$: first_integral's exact core reproduces the certified P1~, $M2$, $M3$, $K$, Den, "
+                           "and first_integral_coefficients(p, 3/7) the certified $P1, P2, P3$", "round trip",
+                           "exact equality in Z[d,w1,w2] (python-flint) and in $Q$", not differing, elapsed[0],
                            ff.terms(), "differs: " + ", ".join(differing) if differing else "identical"))
     return out
 
 
 def _core_claim(p: int) -> str:
-    return f"p = {p}: gamma_basis's exact core reproduces the certified numerators of gamma^(1) and V"
+    return f"$p = {p}$: gamma_basis's exact core reproduces the certified numerators of $gammaI$ and $V$"
 
 
 def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:

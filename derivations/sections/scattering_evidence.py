@@ -51,7 +51,7 @@ def fast_rotation_certificate(log: CertificateLog) -> Certificate:
     detail = (f"{points} points p in {{{', '.join(GRID_P)}}} x d in {{{', '.join(GRID_D)}}}; "
               f"max |G1(0) - closed| = {mpmath.nstr(worst_g0, 3)}, max |cos dpsi - closed| = {mpmath.nstr(worst_cos, 3)}")
     return log.record(Certificate(
-        "the ss solution integrated from t = -oo to +oo gives G1(0) = -cos(pi p/2)/cosh(pi p/(2d)) and "
+        "the ss solution integrated from $t = -oo$ to $+oo$ gives $G1(0) = -cos(pi p/2)/cosh(pi p/(2d))$ and "
         "cos(Delta psi) = -G1(+oo) = 2 cos^2(pi p/2)/cosh^2(pi p/(2d)) - 1 (to 1e-30)", "Theorem 5.2",
         f"Frobenius series at t = +-oo + Taylor steps in mpmath at {GRID_DPS} digits (evidence, not proof)",
         Outcome.PASS if ok else Outcome.FAIL, elapsed[0], points, detail))
