@@ -229,6 +229,13 @@ class MathPrinter(FormulaPrinter):
             return f"{self._print(expr.base)}^{{{self._print(expr.exp)}}}"   # 10^{-90}, not 1/10^90 written out
         return super()._print_Pow(expr)
 
+    def _print_Float(self, expr):
+        mantissa, _, exponent = repr(float(expr)).partition("e")   # as written: 1e-15, 2.5e8, 0.25
+        if not exponent:
+            return mantissa
+        power = f"10^{{{int(exponent)}}}"
+        return power if mantissa == "1" else f"{mantissa} \\cdot {power}"
+
     def _print_Tuple(self, expr):
         return r"\left(" + ", ".join(self._print(a) for a in expr.args) + r"\right)"
 

@@ -167,7 +167,7 @@ def certify_integral_core(log: CertificateLog, module, objects: dict) -> list:
                           if public[name] != expected[name]]
         out.append(_record(log, f"$p = {p}$: first_integral's exact core reproduces the certified P1~, $M2$, $M3$, $K$, Den, "
                            "and first_integral_coefficients(p, 3/7) the certified $P1, P2, P3$", "round trip",
-                           "exact equality in Z[d,w1,w2] (python-flint) and in $Q$", not differing, elapsed[0],
+                           "exact equality in $Z[d,w1,w2]$ (python-flint) and in $Q(d, w1, w2)$", not differing, elapsed[0],
                            ff.terms(), "differs: " + ", ".join(differing) if differing else "identical"))
     return out
 
@@ -185,7 +185,7 @@ def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
             differing = [f"{kind} component {j + 1}" for kind, got, want in (("gamma^(1)", mine[0], real),
                                                                            ("V", mine[1], cplx))
                          for j in range(3) if got.M[j] != want[j]]
-        out.append(_record(log, _core_claim(p), "round trip", "exact equality in Q[x,d,i]/(i^2+1) (python-flint)",
+        out.append(_record(log, _core_claim(p), "round trip", "exact equality in $Q[x,d,i]/(i^2+1)$ (python-flint)",
                            not differing, elapsed[0], sum(len(m) for m in real + cplx),
                            "differs: " + ", ".join(differing) if differing else "identical"))
     return out

@@ -62,6 +62,7 @@ from derivations.core.certificates import (
 from derivations.core.common_denominator import NotAPolynomial, polynomial
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, certify_polys_zero, certify_zero
+from derivations.core.statement import Statement, ring
 from derivations.core.flint_factor import factor_univariate
 from derivations.core.recipe_rings import INTEGRAL_CTX as CTX
 from derivations.core.recipe_rings import INTEGRAL_RING
@@ -159,11 +160,11 @@ def certify_p(log: CertificateLog, p_value: int, field_pd: dict) -> tuple[Fracti
         vanishes = dG.is_zero()
     cert_int = log.record(Certificate(
         f"$p = {p_value}$: $D(F3, t) = 0$ on eq:sysfin + Poisson (F3 = P1 g1 + P2 g2 + P3 g3, P1 = w1 Q)",
-        "eq:liniowiec", f"exact zero test in {FLINT_DOMAIN}", Outcome.PASS if vanishes else Outcome.FAIL,
+        "eq:liniowiec", Statement("exact zero test in ", ring(FLINT_DOMAIN)), Outcome.PASS if vanishes else Outcome.FAIL,
         elapsed[0], len(G), f"$G = K^2 Den F3$ has {len(G)} terms; $K D(G, t)$ has {len(dG)} terms"))
     cert_poly = log.record(Certificate(
         f"$p = {p_value}$: $P2$ is a polynomial (w1 divides K^2 P1~ - d L~ M3 exactly); $P3$ is one by construction",
-        "eq:p23", f"exact division in {FLINT_DOMAIN}", Outcome.PASS if divisible else Outcome.FAIL,
+        "eq:p23", Statement("exact division in ", ring(FLINT_DOMAIN)), Outcome.PASS if divisible else Outcome.FAIL,
         0.0, ff.terms(), "remainder of the division by $w1$ is 0" if divisible else "non-zero remainder"))
     with stopwatch() as elapsed:
         # det d(F1,F2,F3)/d(w1,g1,g2) = 2 dF1/dw1 (g1 P2 - g2 P1) up to the positive factor K^2 Den
@@ -171,7 +172,7 @@ def certify_p(log: CertificateLog, p_value: int, field_pd: dict) -> tuple[Fracti
         independent = not minor.is_zero()
     cert_ind = log.record(Certificate(
         f"$p = {p_value}$: $F3$ is functionally independent of $F1, F2$ (a 3x3 Jacobian minor is a non-zero polynomial)",
-        "Theorem 6.2", f"non-zero test in {FLINT_DOMAIN}", Outcome.PASS if independent else Outcome.FAIL,
+        "Theorem 6.2", Statement("non-zero test in ", ring(FLINT_DOMAIN)), Outcome.PASS if independent else Outcome.FAIL,
         elapsed[0], len(minor), f"minor $d(F1,F2,F3)/d(w1,g1,g2)$ has {len(minor)} terms"))
     return ff, [cert_int, cert_poly, cert_ind]
 

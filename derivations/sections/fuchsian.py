@@ -123,7 +123,7 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
     finite = next(c for c in even["certificates"] if "infinite order" in c[0])[1]
     c_wrong = log.record(Certificate(
         "the monodromy group of the body with p = 2 (I13 = 0) is finite", "Conclusion",
-        "ball enclosure: an eigenvalue of modulus != 1 refutes it", Outcome.FAIL if finite == "pass" else Outcome.UNKNOWN,
+        "ball enclosure: an eigenvalue of modulus other than 1 refutes it", Outcome.FAIL if finite == "pass" else Outcome.UNKNOWN,
         0.0, 1, "$tr M(x=0) - 1$ lies outside [-2, 2]: an element of infinite order", expected=Outcome.FAIL))
     # the Conclusion's meromorphy, tested on the group itself: a solution meromorphic at t0 = i pi/2 for every
     # initial value means a trivial local monodromy there (x = e^t is biholomorphic near t0, x = i)

@@ -25,7 +25,7 @@ Method
    ``Delta = n`` the Frobenius recursion from the smaller exponent ``(1-n)/2`` is obstructed at
    step n by ``sum_{j=1}^{n} r_j y_{n-j}`` (``r = sum r_j zeta^(j-2)``); zero means no logarithm.
    :mod:`derivations.sections.local_obstruction` computes it exactly in Q(m) (python-flint ``fmpq_poly``,
-   denominators cleared by the least E with den(r_j) | E^j, here m^2 - 1) for s1 and s3 and every
+   denominators cleared by the least E with $den(r_j)$ divides $E^j$, here m^2 - 1) for s1 and s3 and every
    p up to the build's ``galois_pmax`` (40 by default); s2 follows from s1 by the certified
    symmetry (w, m) -> (-w, -m), s4 from s3 by m -> 1/m.  Choice measured: the earlier fraction-free
    recursion in Q(i)[m] with powers of the leading coefficient (m-degree 28p - 1) took about 80 s
@@ -331,8 +331,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
             f"p = {p_value}: s1, s2 " + ("non-logarithmic for every $d > 0$" if p_value % 2 else
                                          "logarithmic for all but finitely many $d > 0$")
             + ", $s3, s4$ non-logarithmic for every $d > 0$", "Conjecture 5.2",
-            "exact Frobenius obstruction in $Q(m)$ at $w = 1$ and w = -m (w = -i z, c, d = (m^2+-1)/(2m)), "
-            "denominators cleared by the least $E$ with den(r_j) | E^j (derivations.sections.local_obstruction)",
+            "exact Frobenius obstruction in $Q(m)$ at $w = 1$ and $w = -m$ ($w = -i z$, $c = (m^2 + 1)/(2 m)$, $d = (m^2 - 1)/(2 m)$), "
+            "denominators cleared by the least $E$ with $den(r_j)$ divides $E^j$ (derivations.sections.local_obstruction)",
             Outcome.PASS if ok else Outcome.FAIL, seconds, 4,
             ", ".join(f"{k}: {v}" for k, v in verdict.items())))
         rows.append({"p": p_value, "s1": verdict["s1"], "s2": verdict["s2"], "s3": verdict["s3"], "s4": verdict["s4"],

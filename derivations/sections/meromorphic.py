@@ -59,6 +59,7 @@ from derivations.core.certificates import (
     stopwatch,
 )
 from derivations.core.exact import Domain, certify_zero
+from derivations.core.statement import Statement, ring
 from derivations.core.result import DerivationResult
 from derivations.sections.meromorphic_printed import (
     coefficient_tables,
@@ -148,20 +149,20 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
         ok_div = real.divisions_exact and cplx.divisions_exact
     certs.append(log.record(Certificate(
         f"$p = {p}$: the components from eq:gam3 are polynomials over $(1+x^2)^p$: exact division by $x$ and $x^2-1$ "
-        "(no removable singularity at t = 0)", "eq:gam3", f"exact division in {DOMAIN}",
+        "(no removable singularity at t = 0)", "eq:gam3", Statement("exact division in ", ring(DOMAIN)),
         Outcome.PASS if ok_div else Outcome.FAIL, elapsed[0], sum(len(m) for m in real.M + cplx.M))))
     with stopwatch() as elapsed:
         third = third_order_residual(cplx.M[0], p, 1)
     certs.append(log.record(Certificate(
         f"$p = {p}$: g1 = e^(i(p/d)t) x P+(x^2)/(1+x^2)^p = sqrt(z-1) F2(z) (F_23_pol) solves eq:genhipprep; with the "
         "certified reduction to eq:genhip, $F2$ and its conjugate $F3$ solve eq:genhip", "F_23_pol",
-        f"exact zero test in {DOMAIN}", Outcome.PASS if third.is_zero() else Outcome.FAIL, elapsed[0], len(third))))
+        Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if third.is_zero() else Outcome.FAIL, elapsed[0], len(third))))
     with stopwatch() as elapsed:
         residuals = poisson_residuals(real) + poisson_residuals(cplx)
         ok = all(r.is_zero() for r in residuals)
     certs.append(c_poisson := log.record(Certificate(
         f"$p = {p}$: $gammaI$ and the complex solution $e^(i(p/d)t) V$ solve the Poisson equations eq:ps with $omega$ "
-        "from omegas", "eq:ps", f"exact zero test in {DOMAIN}", Outcome.PASS if ok else Outcome.FAIL, elapsed[0],
+        "from omegas", "eq:ps", Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL, elapsed[0],
         sum(len(r) for r in residuals), "6 numerator identities")))
 
     with stopwatch() as elapsed:
@@ -190,10 +191,10 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
                   and (metric_dot(real0, real0) - (D**2 + 1) * scale_real**2).is_zero()
                   and (metric_dot(V0, Vbar0) - unit_target).is_zero())
             size = 2
-    method = (f"exact zero test in {DOMAIN}" if direct else
+    method = (Statement("exact zero test in ", ring(DOMAIN)) if direct else
               "conservation: the certified Poisson solutions (this p) have constant G-products (G-skew system, "
-              "certified once); rate-0 constants from exact values at x = 0, products carrying e^(ikat), k != 0, "
-              "are zero (a non-zero constant would make e^(ikat) converge as t -> -oo)")
+              "certified once); rate-0 constants from exact values at $x = 0$, products carrying $e^(i k a t)$ with $k$ "
+              "non-zero are zero (a non-zero constant would make $e^(i k a t)$ converge as $t$ tends to $-oo$)")
     certs.append(log.record(Certificate(
         f"$p = {p}$: |gamma^(1)| = 1, V.V = 0, |V|^2 = 2|k|^2, gamma^(1).V = 0: $gammaI$, Re and Im of $V/k$ orthonormal",
         "gam1, gam2, gam3", method, Outcome.PASS if ok else Outcome.FAIL, elapsed[0], size, "4 identities")))
@@ -209,7 +210,7 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
               and lim_plus[2].is_zero() and at_x(cplx.M[0], 0).is_zero())
     certs.append(log.record(Certificate(
         f"$p = {p}$: gamma^(1) -> (-1,0,0) as t -> -oo and $(+1,0,0)$ as t -> +oo; V/k -> (0, 1, {'+' if sigma > 0 else '-'}i) "
-        "as t -> -oo (asymp)", "asymp", f"exact evaluation in {DOMAIN}", Outcome.PASS if ok else Outcome.FAIL,
+        "as t -> -oo (asymp)", "asymp", Statement("exact evaluation in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL,
         elapsed[0], 0)))
     return Basis(p, real, cplx, k, scale_real, sigma, certs)
 
@@ -240,7 +241,7 @@ def genhip_check(log: CertificateLog, p: int) -> Certificate:
                + (2 * (ZD**2 + p * p) + 2 * ZD**2 * (p * p - 13) * ZV) * d1 + ZD**2 * (p * p - 1) * u)
     return log.record(Certificate(
         f"$p = {p}$: the terminating series $F1(z)$ (pol_sol, derived coefficients) solves eq:genhip",
-        "pol_sol", "exact zero test in Z[z,d] (python-flint, times 8 d^2 Den)",
+        "pol_sol", "exact zero test in $Z[z,d]$ (python-flint, times $8 d^2 Den$)",
         Outcome.PASS if lhs.is_zero() else Outcome.FAIL, elapsed[0], len(u)))
 
 

@@ -30,6 +30,7 @@ from derivations.core.flint_factor import (
     generator_order,
 )
 from derivations.core.result import DerivationResult
+from derivations.core.statement import Statement, ring
 from derivations.core.typeset import latex
 from derivations.sections.meromorphic_ring import (
     CTX,
@@ -82,10 +83,10 @@ def printed_comparisons(log: CertificateLog, result: DerivationResult, proof: Ce
         bad = third_order_residual(V1, p, -1).is_zero()
     c_pair = log.record(Certificate(
         "$p = 3$: e^{+i(p/d)t} x P+(x^2)/(1+x^2)^p (parameters with +ip) solves eq:genhipprep", "gam2",
-        f"exact zero test in {DOMAIN}", Outcome.PASS if good else Outcome.FAIL, elapsed[0], len(V1)))
+        Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if good else Outcome.FAIL, elapsed[0], len(V1)))
     c_pair_bad = log.record(Certificate(
         "$p = 3$: the printed gam2 pairing $e^(-i (p/d) t)$ with the $+i p$ parameters solves eq:genhipprep", "gam2",
-        f"exact zero test in {DOMAIN}", Outcome.FAIL if not bad else Outcome.PASS, 0.0, len(V1),
+        Statement("exact zero test in ", ring(DOMAIN)), Outcome.FAIL if not bad else Outcome.PASS, 0.0, len(V1),
         expected=Outcome.FAIL))
     result.errata.append(erratum(
         paper.GAM1, "corrected", r"\gamma_1^{(1)}=\tanh t\,\mathcal F_1(\operatorname{sech}^2t),\ a_k=4^kc_k",

@@ -73,7 +73,7 @@ def check_body(I: dict, p_value: int) -> tuple[bool, str]:
     triangle = I["I11"] < I["I22"] + I["I33"] and spread < I["I11"] ** 2
     ok = positive and meromorphic and triangle
     return ok, (f"leading minors {', '.join(str(m) for m in minors)} positive; $p^2 = {p_value**2}$; "
-                f"$I11 < J2+J3 = {I['I22'] + I['I33']}$; (J2-J3)^2 = {spread} < I11^2 = {I['I11'] ** 2}")
+                f"$I11 < J2+J3 = {I['I22'] + I['I33']}$; $(J2-J3)^2 = {spread}$, below $I11^2 = {I['I11'] ** 2}$")
 
 
 def body_rows(log: CertificateLog, p_values) -> list[dict]:

@@ -287,8 +287,8 @@ def logarithm_verdict(p_value: int) -> tuple[str, str, int, list[str], float]:
                "logarithms for every $d > 0$" if positive else "logarithms (generic d)")
     detail = ("all resonance obstructions vanish identically: "
               + ", ".join(f"k={k} ({name})" for k, name, _ in obstructions)) if not nonzero else (
-        "non-zero obstruction " + ", ".join(f"k={k} ({name}): {text}" for (k, name, _), (text, _) in zip(nonzero, printed)))
-    return verdict, detail[:400], len(obstructions), [tex for _, tex in printed][:2], elapsed[0]
+        "non-zero obstruction " + ", ".join(f"$k = {k}$ ({name}): ${text}$" for (k, name, _), (text, _) in zip(nonzero[:2], printed)))
+    return verdict, detail, len(obstructions), [tex for _, tex in printed][:2], elapsed[0]
 
 
 def run(log: CertificateLog, options, model_result, kova_result, special_result) -> DerivationResult:
@@ -357,7 +357,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
             max_pole, residue_ok = gauge_transformed_pole(S_printed, p_value)
         gauge_certs.append(log.record(Certificate(
             f"$p = {p_value}$: the printed gauge $U = diag(tau^2p, tau^p, 1)$ gives B = -p Id/tau + holomorphic",
-            "Theorem 3.5", "exact Laurent expansion (Bernoulli series) in Q(d)[c,i]/(c^2-d^2-1, i^2+1)",
+            "Theorem 3.5", "exact Laurent expansion (Bernoulli series) in $Q(d)[c,i]/(c^2-d^2-1, i^2+1)$",
             Outcome.PASS if (max_pole <= 1 and residue_ok) else Outcome.FAIL, elapsed[0], max_pole,
             f"highest pole order of $B$ is {max_pole}; residue {'is' if residue_ok else 'is not'} $-p Id$",
             expected=Outcome.FAIL)))
