@@ -7,7 +7,7 @@ runs the recipes).  Which generated module: :func:`active_formulas` (the checkou
 ``generated/``, the wheel's ``suslov.formulas``, ``$SUSLOV_FORMULAS`` or :func:`use_formulas`);
 a larger p range without touching the checkout: :func:`load_formulas` (``load_formulas(pmax=101)``).
 
-Layers (DESIGN.md, data flow): ``suslov.kernel`` (numerical machinery) and
+Layers (docs/design.md, data flow): ``suslov.kernel`` (numerical machinery) and
 ``suslov.recipes`` (constructions written once, run by the build exactly and by the module
 numerically) need neither SymPy nor ``generated``; the simulator modules import
 ``generated``, never ``derivations``.

@@ -1,4 +1,4 @@
-"""Enclosure certificates: numeric claims decided with python-flint balls (issue 16; DESIGN.md's rules).
+"""Enclosure certificates: numeric claims decided with python-flint balls (issue 16; docs/design.md's rules).
 
 A claim is an inequality about a computable real number, ``|quantity| <= tolerance`` (the
 quantity usually a difference between two routes, e.g. a closed form and a validated

@@ -1,7 +1,7 @@
 """Certificate records: what was claimed, where the paper states it, how it was checked.
 
 Every formula the build emits is backed by one or more :class:`Certificate`
-records (DESIGN.md, "Certification").  A certificate names
+records (docs/design.md, "Certification").  A certificate names
 
 * the claim in words and mathematics (a :class:`~derivations.core.statement.Statement`: written
   ``"words $formula$"``, each formula a SymPy object; the JSON and the terminal print its plain

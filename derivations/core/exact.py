@@ -1,7 +1,7 @@
 """Exact zero tests in canonical polynomial / rational-function domains.
 
 An identity ``expr == 0`` is certified by bringing ``expr`` to a canonical form
-in a ring where "zero" is decidable (DESIGN.md, "Certification"):
+in a ring where "zero" is decidable (docs/design.md, "Certification"):
 
 1. ``expr`` is written over a common denominator, ``num/den``, with ``num`` and
    ``den`` polynomials over Q in the generators of the domain;

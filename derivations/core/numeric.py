@@ -1,6 +1,6 @@
 """Numeric corroboration with mpmath at 30+ digits at seeded random points.
 
-A numeric check is *evidence*, not a proof (DESIGN.md, "Certification"): the
+A numeric check is *evidence*, not a proof (docs/design.md, "Certification"): the
 certificate's method says so, with the precision, the number of points, the
 seed and the largest relative residual seen.  It is meant as an independent
 route beside the exact zero tests: ODE residuals are evaluated with

@@ -24,7 +24,7 @@ denominators ``(2m+1)^2 d^2 + p^2`` (printed: ``(2m+1) d^2 + p^2``).
 Normalisation: P1 = w1 Q with c_0 = 1, so P1 = w1 F1^((p-1)/2) + ...; the
 leading coefficient is what comes out, not rescaled.
 
-Certification at scale (DESIGN.md: measure, do not guess)
+Certification at scale (docs/design.md: measure, do not guess)
 ---------------------------------------------------------
 Everything is cleared of denominators and tested in
 ``Z[d, w1, w2, g1, g2, g3]`` with python-flint's ``fmpz_mpoly``:
