@@ -68,8 +68,8 @@ def test_every_formula_survives_srepr_and_its_plain_text(default_build):
     checked = 0
     for certificate, value in _parts(default_build):
         for expr in value.expressions():
-            with sp.evaluate(False):     # the written form, unevaluated, is what srepr must give back
-                assert eval(sp.srepr(expr), namespace) == expr, (certificate.key, expr)
+            with sp.evaluate(False):     # every node and term, unevaluated (srepr sorts the terms of a sum)
+                assert sp.srepr(eval(sp.srepr(expr), namespace)) == sp.srepr(expr), (certificate.key, expr)
             if isinstance(expr, sp.Basic) and not isinstance(expr, sp.MatrixBase):
                 reread = math(TextPrinter().doprint(expr))
                 assert _canonical(reread) == _canonical(expr), (certificate.key, expr, reread)

@@ -68,7 +68,7 @@ def certify_enclosure(log: CertificateLog, claim: str, label: str, quantities: C
             if all(o is Outcome.PASS for o in outcomes):
                 outcome = Outcome.PASS
                 break
-    detail = (f"{len(values)} enclosures at {bits} bits ({attempt} doublings): max |q| <= {worst.str(3, radius=False)} "
+    detail = (f"{len(values)} enclosures at {bits} bits ({attempt} doublings): $abs(q) <= {worst.str(3, radius=False)}$ "
               f"vs tolerance {tolerance.str(3, radius=False)}")
     method = f"{METHOD}{': ' + what if what else ''}; a pass proves the stated bound"
     return log.record(Certificate(claim, label, method, outcome, elapsed[0], work, detail, expected=expect))

@@ -59,8 +59,20 @@ SYMBOL_NAMES = {
     "w_m": r"w_{-}", "w_p": r"w_{+}", "Id": r"\mathrm{Id}", "Den": r"\mathrm{Den}",
     "A0": r"A_{0}", "t0": r"t_{0}", "s0": r"s_{0}",
     "tau_p": r"\tau'", "Wp": r"W'", "Cp": r"C'", "sth": r"\sin\theta", "cth": r"\cos\theta",
+    "Iinv": r"I^{-1}", "uxv3": r"(u \times v)_{3}", "wdotw": r"w \cdot w", "OmegadotOmega": r"\Omega \cdot \Omega",
     "shx": r"\sinh x", "chx": r"\cosh x", "sy": r"\sin y", "cy": r"\cos y",
 }
+
+
+def _powered(latex):
+    """A ``_latex`` method that also takes the exponent SymPy's printer hands to a function raised to a power."""
+    def method(self, printer, exp=None):
+        body = latex(self, printer)
+        if exp is None:
+            return body
+        bracketed = body.endswith((r"\right)", r"\right|", r"\right\rangle"))
+        return (body if bracketed else r"\left(" + body + r"\right)") + "^{" + exp + "}"
+    return method
 
 
 class _Named(sp.Function):
@@ -68,6 +80,7 @@ class _Named(sp.Function):
 
     tex_name = ""
 
+    @_powered
     def _latex(self, printer):
         return self.tex_name + r"\left(" + ", ".join(printer._print(a) for a in self.args) + r"\right)"
 
@@ -81,6 +94,7 @@ def _named(name: str, tex: str):
 class inner(sp.Function):
     """``<a, b>``: the scalar product."""
 
+    @_powered
     def _latex(self, printer):
         return r"\left\langle " + ", ".join(printer._print(a) for a in self.args) + r"\right\rangle"
 
@@ -88,6 +102,7 @@ class inner(sp.Function):
 class cross(sp.Function):
     """``a x b``: the cross product (``cross(a, b)`` in text)."""
 
+    @_powered
     def _latex(self, printer):
         return r" \times ".join(printer.parenthesize(a, 50) for a in self.args)
 
@@ -97,6 +112,7 @@ class pm(sp.Function):
 
     sign = r"\pm"
 
+    @_powered
     def _latex(self, printer):
         return self.sign + " " + printer.parenthesize(self.args[0], 50)
 
@@ -105,9 +121,21 @@ class mp(pm):
     sign = r"\mp"
 
 
+class equal(sp.Function):
+    """``a = b = c``: a chain of equalities (SymPy's ``Eq`` takes two sides)."""
+
+    @_powered
+    def _latex(self, printer):
+        return " = ".join(printer._print(a) for a in self.args)
+
+    def _sympystr(self, printer):
+        return " = ".join(printer._print(a) for a in self.args)
+
+
 class to(sp.Function):
     """``t -> a``: a limit process (``to(t, -oo)``)."""
 
+    @_powered
     def _latex(self, printer):
         return printer._print(self.args[0]) + r" \to " + printer._print(self.args[1])
 
@@ -118,7 +146,7 @@ def _abs_latex(self, printer):
 
 # ``|a|`` of a vector or a symbol without SymPy's evaluation (``Abs`` of a positive symbol drops it);
 # a module attribute of its class name, so that it pickles
-abs_ = type("abs_", (sp.Function,), {"_latex": _abs_latex, "_sympystr": lambda self, printer: f"abs({printer._print(self.args[0])})"})
+abs_ = type("abs_", (sp.Function,), {"_latex": _powered(_abs_latex), "_sympystr": lambda self, printer: f"abs({printer._print(self.args[0])})"})
 
 
 FUNCTIONS = {
@@ -131,9 +159,9 @@ FUNCTIONS = {
     "deg": _named("deg", r"\deg"), "Res": _named("Res", r"\operatorname{Res}"),
     "atan2": _named("atan2", r"\operatorname{atan2}"), "SO": _named("SO", r"\mathrm{SO}"),
     "PSL": _named("PSL", r"\mathrm{PSL}"), "SL": _named("SL", r"\mathrm{SL}"),
-    "Derivative": sp.Derivative, "D": lambda f, *v: sp.Derivative(f, *v, evaluate=False),
+    "Derivative": sp.Derivative, "deriv": lambda f, *v: sp.Derivative(f, *v, evaluate=False),
     "Matrix": sp.Matrix, "Sum": sp.Sum, "factorial": sp.factorial, "RisingFactorial": sp.RisingFactorial,
-    "inner": inner, "cross": cross, "pm": pm, "mp": mp, "to": to, "Max": sp.Max, "Min": sp.Min,
+    "inner": inner, "cross": cross, "pm": pm, "mp": mp, "to": to, "equal": equal, "Max": sp.Max, "Min": sp.Min,
     "floor": sp.floor, "binomial": sp.binomial, "Tuple": sp.Tuple, "Interval": sp.Interval,
 }
 CONSTANTS = {"i": sp.I, "pi": sp.pi, "oo": sp.oo, "E": sp.E, "True": sp.true, "False": sp.false}
@@ -175,11 +203,26 @@ def _names(span: str) -> dict:
     return names
 
 
+def _equals_signs(text: str) -> list[int]:
+    """Positions of the ``=`` at bracket depth 0 that are equations (not ``<=``, ``>=``, ``!=``, ``==``)."""
+    found, depth = [], 0
+    for k, ch in enumerate(text):
+        depth += ch in "([{"
+        depth -= ch in ")]}"
+        if ch == "=" and depth == 0 and text[k - 1:k] not in ("<", ">", "!", "=") and text[k + 1:k + 2] != "=":
+            found.append(k)
+    return found
+
+
 @functools.lru_cache(maxsize=8192)
 def math(span: str):
     """The SymPy object of one formula written in SymPy's syntax (``^`` a power, products by juxtaposition,
     ``=`` an equation, ``a, b`` a tuple)."""
     text = span.strip()
+    signs = _equals_signs(text)
+    if len(signs) > 1:           # a = b = c
+        bounds = [-1] + signs + [len(text)]
+        return equal(*(math(text[a + 1:b]) for a, b in zip(bounds, bounds[1:])))
     try:
         local = {**_names(text), **FUNCTIONS, **CONSTANTS}
         value = parse_expr(text, local_dict=local, global_dict=dict(_PARSER_GLOBALS),

@@ -159,11 +159,11 @@ def certify_p(log: CertificateLog, p_value: int, field_pd: dict) -> tuple[Fracti
         dG = scaled_time_derivative(G, scaled_field(field_pd, p_value))
         vanishes = dG.is_zero()
     cert_int = log.record(Certificate(
-        f"$p = {p_value}$: $D(F3, t) = 0$ on eq:sysfin + Poisson (F3 = P1 g1 + P2 g2 + P3 g3, P1 = w1 Q)",
+        f"$p = {p_value}$: $deriv(F3, t) = 0$ on eq:sysfin + Poisson (F3 = P1 g1 + P2 g2 + P3 g3, P1 = w1 Q)",
         "eq:liniowiec", Statement("exact zero test in ", ring(FLINT_DOMAIN)), Outcome.PASS if vanishes else Outcome.FAIL,
-        elapsed[0], len(G), f"$G = K^2 Den F3$ has {len(G)} terms; $K D(G, t)$ has {len(dG)} terms"))
+        elapsed[0], len(G), f"$G = K^2 Den F3$ has {len(G)} terms; $K deriv(G, t)$ has {len(dG)} terms"))
     cert_poly = log.record(Certificate(
-        f"$p = {p_value}$: $P2$ is a polynomial (w1 divides K^2 P1~ - d L~ M3 exactly); $P3$ is one by construction",
+        f"$p = {p_value}$: $P2$ is a polynomial ($w1$ divides $K^2 Ptilde_1 - d Ltilde M3$ exactly); $P3$ is one by construction",
         "eq:p23", Statement("exact division in ", ring(FLINT_DOMAIN)), Outcome.PASS if divisible else Outcome.FAIL,
         0.0, ff.terms(), "remainder of the division by $w1$ is 0" if divisible else "non-zero remainder"))
     with stopwatch() as elapsed:
@@ -348,7 +348,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         result.errata.append(erratum(
             paper.P23, "corrected", r"P_3=-\frac{d}{p}\Big(\frac{\omega_2}{d^2+1}\frac{\partial P_1}{\partial\omega_1}"
             r"-\omega_1\frac{\partial P_1}{\partial\omega_2}\Big)",
-            "the printed + sign in $P3$ contradicts the paper's own eq:partial; with it $D(F3, t) != 0$",
+            "the printed + sign in $P3$ contradicts the paper's own eq:partial; with it $deriv(F3, t) != 0$",
             *refuted["p23"], proofs[min(proofs)]))
     if refuted["pol_sol"]:
         result.errata.append(erratum(

@@ -73,17 +73,17 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
                             "eq:o12", [solution[w] - (uk * T + vk * S) for w, uk, vk in zip((w1, w2), u, v)], FUCHS)
     partial = [(uk * tanh_x + vk * sech_x) / x - (-uk / x + (uk - j * vk) / (x - j) + (uk + j * vk) / (x + j))
                for uk, vk in zip(u, v)]
-    c_fuchs = certify_zero(log, "in x = e^t, $omega/x = -u/x + (u - i v)/(x - i) + (u + i v)/(x + i)$: the Poisson "
-                           "equations are Fuchsian (simple poles at $0$, +-i and infinity)", "eq:whole", partial, FUCHS)
+    c_fuchs = certify_zero(log, "in $x = e^t$, $omega/x = -u/x + (u - i v)/(x - i) + (u + i v)/(x + i)$: the Poisson "
+                           "equations are Fuchsian (simple poles at $0$, $i$, $-i$ and infinity)", "eq:whole", partial, FUCHS)
     W = sp.symbols("W1:4")
-    c_char = certify_zero(log, "det(lambda - C(w)) = lambda^3 + (w.w) lambda: exponents $0$, +-i sqrt(w.w) at a simple "
+    c_char = certify_zero(log, "$det(lam - C(w)) = lam^3 + wdotw lam$: exponents $0$, $pm(i sqrt(wdotw))$ at a simple "
                           "pole with residue $C(w)$", "eq:whole",
                           sp.expand((lam * sp.eye(3) - cross(W)).det() - (lam**3 + (W[0]**2 + W[1]**2 + W[2]**2) * lam)),
                           PLAIN)
     p_squared = I22 * (I11 - I22) / I23**2
     at_i = [(uk - j * vk).subs(I13, 0) for uk, vk in zip(u, v)]
-    c_exp = certify_zero(log, "for $I13 = 0$ the residue at x = +-i has w.w = -p^2, $p^2 = I22 (I11 - I22)/I23^2$: "
-                         "exponents $0$, +-p (integers for integer p)", "eq:necc1",
+    c_exp = certify_zero(log, "for $I13 = 0$ the residue at $x = pm(i)$ has $wdotw = -p^2$, $p^2 = I22 (I11 - I22)/I23^2$: "
+                         "exponents $0$, $pm(p)$ (integers for integer $p$)", "eq:necc1",
                          sp.together(at_i[0] ** 2 + at_i[1] ** 2 + p_squared), FUCHS)
     result.formula("fuchs", "eq:whole", "The Poisson equations in $x=e^t$: a Fuchsian system",
                    r"\frac{d\gamma}{dx}=\gamma\,A(x),\quad A(x)=\frac{C(-u)}{x}+\frac{C(u-iv)}{x-i}+\frac{C(u+iv)}{x+i},"
@@ -102,7 +102,7 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
         outcome = {"SO(3,C)": Outcome.PASS, "reducible": Outcome.PASS}.get(summary["verdict"], Outcome.UNKNOWN)
         detail = "; ".join(f"{text.split(':')[0]}: {outcome_}" for text, outcome_, _ in summary["certificates"])
         cert = log.record(Certificate(claim, "Conclusion", "ball enclosure (python-flint acb): validated Taylor steps "
-                                      f"with majorant bounds along loops in x = e^t, ${DIGITS}$ digits",
+                                      f"with majorant bounds along loops in $x = e^t$, ${DIGITS}$ digits",
                                       outcome, summary["seconds"], len(summary["certificates"]), detail[:400]))
         verdict_certs.append(cert)
         rows.append({"case": case, "body": body, "verdict": summary["verdict"], "liouvillian": summary["liouvillian"],

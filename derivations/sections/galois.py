@@ -243,8 +243,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     u1 = (g3 + 1) / (g1 - sp.I * g2)
     u2 = -(g1 + sp.I * g2) / (g3 + 1)
     dot = lambda f: sum(sp.diff(f, v) * rhs for v, rhs in poisson.items())  # noqa: E731
-    c_ric = certify_zero(log, "$u1 = (g3+1)/(g1 - i g2)$ and $u2 = -(g1 + i g2)/(g3+1)$ solve u' = A + B u + C u^2 "
-                         "on |gamma| = 1 (printed $A, B, C$; omega3 = 0)", "eq:rig, eq:ABC",
+    c_ric = certify_zero(log, "$u1 = (g3+1)/(g1 - i g2)$ and $u2 = -(g1 + i g2)/(g3+1)$ solve $deriv(u, t) = A + B u + C u^2$ "
+                         "on $abs(gamma) = 1$ (printed $A$, $B$, $C$; $omega3 = 0$)", "eq:rig, eq:ABC",
                          [dot(u) - (A + B * u + C * u**2) for u in (u1, u2)], SPHERE_DOMAIN)
     uu1, uu2 = sp.symbols("u1 u2")
     gi = [(1 - uu1 * uu2) / (uu1 - uu2), sp.I * (1 + uu1 * uu2) / (uu1 - uu2), (uu1 + uu2) / (uu1 - uu2)]
@@ -269,7 +269,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                         [pz - ppz, qz - pqz], ZC)
     with stopwatch() as elapsed:
         same_r = (N - sp.Poly(P, z, cc, p, domain=sp.QQ_I)).is_zero and (Qd - sp.Poly(Q, z, cc, p, domain=sp.QQ_I)).is_zero
-    c_r = log.record(Certificate("r = p'/2 + p^2/4 - q equals the printed P/Q (p_0 ... $p_8$, eq:Q)", "eq:rlin, eq:Q",
+    c_r = log.record(Certificate("$r = deriv(p, z)/2 + p^2/4 - q$ equals the printed $P/Q$ ($p_0$ to $p_8$, eq:Q)", "eq:rlin, eq:Q",
                                  "exact polynomial identity in Q(i)[z, c, p]", Outcome.PASS if same_r else Outcome.FAIL,
                                  elapsed[0], len(N.terms())))
     result.formula("rlin", "eq:2rzedu, eq:rlin", "Reduced form $y''=r(z)y$",

@@ -137,8 +137,8 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                    c_char, c_lam)
 
     # necessary conditions
-    c_g1 = certify_zero(log, "$Im(Lambda^2) = 0$ iff $I13 I23 (I11 - I22) = 0$ (imaginary part is -2 r I11 I22 I13 I23 "
-                        "(I11-I22)/D^2)", "eq:neccg1", imag + 2 * r * I11 * I22 * I13 * I23 * (I11 - I22) / D**2, DOMAIN)
+    c_g1 = certify_zero(log, "$Im(Lambda^2) = 0$ iff $I13 I23 (I11 - I22) = 0$ (imaginary part is $-2 r I11 I22 I13 I23 "
+                        "(I11-I22)/D^2$)", "eq:neccg1", imag + 2 * r * I11 * I22 * I13 * I23 * (I11 - I22) / D**2, DOMAIN)
     det_one_D = I11 * I22 * paper_I33() - 1
     printed_g12 = (I11 - I22) * (I11 * I23**2 - I22 * I13**2) / (I11 * I22 * det_one_D**2)
     c_g12 = certify_zero(log, "printed eq:neccg12 (det I = 1) equals $Re(Lambda^2)$", "eq:neccg12",
@@ -153,7 +153,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     derived_n11 = -Lam2.subs(I23, 0)  # derived: = -p^2
     c_n11_pr = certify_zero(log, "printed eq:necc11 left-hand side (det I = 1) equals $-Lambda^2$ for $I23 = 0$",
                             "eq:necc11", printed_n11 - derived_n11, DOMAIN, expect=Outcome.FAIL)
-    c_n11_scale = certify_zero(log, "-Lambda^2 (I23 = 0) = (I11 I22)^2 x printed eq:necc11 left-hand side",
+    c_n11_scale = certify_zero(log, "$-Lambda^2$ ($I23 = 0$) equals $(I11 I22)^2$ times the printed eq:necc11 left-hand side",
                                "eq:necc11", derived_n11 - (I11 * I22) ** 2 * printed_n11, DOMAIN)
     result.formula("necessary", "eq:neccg1, eq:neccg12, eq:necc1, eq:necc11", "Necessary conditions",
                    r"I_{13}I_{23}(I_{11}-I_{22})=0,\quad \Lambda^2=p^2:\quad I_{13}=0:\ \frac{I_{22}(I_{11}-I_{22})}{I_{23}^2}=p^2,"

@@ -123,7 +123,7 @@ def conservation_certificate(log: CertificateLog) -> Certificate:
     dd = sp.Symbol("d", positive=True)
     A = sp.Matrix([[0, 0, a * S], [0, 0, w1], [-a * (dd**2 + 1) * S, -w1, 0]])
     G = sp.diag(dd**2 + 1, 1, 1)
-    return certify_zero(log, "the c-free Poisson matrix A(t) (g1' = a $S g3$, g2' = w1 g3, g3' = -a(d^2+1) S g1 - w1 g2) "
+    return certify_zero(log, "the c-free Poisson matrix $A(t)$ ($deriv(g1, t) = a S g3$, $deriv(g2, t) = w1 g3$, $deriv(g3, t) = -a (d^2+1) S g1 - w1 g2$) "
                         "is real and skew for $M = diag(d^2+1, 1, 1)$: $A^T M + M A = 0$, so M-products of two "
                         "solutions are constant in $t$", "eq:ps", list(A.T * G + G * A), Domain("Q(a,d,S,w1)"))
 
@@ -154,7 +154,7 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
     with stopwatch() as elapsed:
         third = third_order_residual(cplx.M[0], p, 1)
     certs.append(log.record(Certificate(
-        f"$p = {p}$: g1 = e^(i(p/d)t) x P+(x^2)/(1+x^2)^p = sqrt(z-1) F2(z) (F_23_pol) solves eq:genhipprep; with the "
+        f"$p = {p}$: $g1 = e^(i (p/d) t) x P_p(x^2)/(1+x^2)^p = sqrt(z-1) F2(z)$ (F_23_pol) solves eq:genhipprep; with the "
         "certified reduction to eq:genhip, $F2$ and its conjugate $F3$ solve eq:genhip", "F_23_pol",
         Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if third.is_zero() else Outcome.FAIL, elapsed[0], len(third))))
     with stopwatch() as elapsed:
@@ -196,7 +196,7 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
               "certified once); rate-0 constants from exact values at $x = 0$, products carrying $e^(i k a t)$ with $k$ "
               "non-zero are zero (a non-zero constant would make $e^(i k a t)$ converge as $t$ tends to $-oo$)")
     certs.append(log.record(Certificate(
-        f"$p = {p}$: |gamma^(1)| = 1, V.V = 0, |V|^2 = 2|k|^2, gamma^(1).V = 0: $gammaI$, Re and Im of $V/k$ orthonormal",
+        f"$p = {p}$: $abs(gammaI) = 1$, $inner(V, V) = 0$, $abs(V)^2 = 2 abs(k)^2$, $inner(gammaI, V) = 0$: $gammaI$, Re and Im of $V/k$ orthonormal",
         "gam1, gam2, gam3", method, Outcome.PASS if ok else Outcome.FAIL, elapsed[0], size, "4 identities")))
 
     with stopwatch() as elapsed:
@@ -209,8 +209,8 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
               and lim_minus[2].is_zero() and (lim_plus[0] - scale_real).is_zero() and lim_plus[1].is_zero()
               and lim_plus[2].is_zero() and at_x(cplx.M[0], 0).is_zero())
     certs.append(log.record(Certificate(
-        f"$p = {p}$: gamma^(1) -> (-1,0,0) as t -> -oo and $(+1,0,0)$ as t -> +oo; V/k -> (0, 1, {'+' if sigma > 0 else '-'}i) "
-        "as t -> -oo (asymp)", "asymp", Statement("exact evaluation in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL,
+        f"$p = {p}$: $gammaI$ tends to $(-1,0,0)$ as $t$ tends to $-oo$ and to $(1,0,0)$ as $t$ tends to $oo$; $V/k$ tends to "
+        f"$(0, 1, {'' if sigma > 0 else '-'}i)$ as $t$ tends to $-oo$ (asymp)", "asymp", Statement("exact evaluation in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL,
         elapsed[0], 0)))
     return Basis(p, real, cplx, k, scale_real, sigma, certs)
 

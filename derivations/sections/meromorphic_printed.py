@@ -82,7 +82,7 @@ def printed_comparisons(log: CertificateLog, result: DerivationResult, proof: Ce
         good = third_order_residual(V1, p, 1).is_zero()
         bad = third_order_residual(V1, p, -1).is_zero()
     c_pair = log.record(Certificate(
-        "$p = 3$: e^{+i(p/d)t} x P+(x^2)/(1+x^2)^p (parameters with +ip) solves eq:genhipprep", "gam2",
+        "$p = 3$: $e^(i (p/d) t) x P_p(x^2)/(1+x^2)^p$ (parameters with $+i p$) solves eq:genhipprep", "gam2",
         Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if good else Outcome.FAIL, elapsed[0], len(V1)))
     c_pair_bad = log.record(Certificate(
         "$p = 3$: the printed gam2 pairing $e^(-i (p/d) t)$ with the $+i p$ parameters solves eq:genhipprep", "gam2",
@@ -90,12 +90,12 @@ def printed_comparisons(log: CertificateLog, result: DerivationResult, proof: Ce
         expected=Outcome.FAIL))
     result.errata.append(erratum(
         paper.GAM1, "corrected", r"\gamma_1^{(1)}=\tanh t\,\mathcal F_1(\operatorname{sech}^2t),\ a_k=4^kc_k",
-        "inherits the pol_sol misprints (sign $(-1)^k$, denominators (2m+1)^2 d^2 + p^2)", c_gam1, proof))
+        "inherits the pol_sol misprints (sign $(-1)^k$, denominators $(2 m+1)^2 d^2 + p^2$)", c_gam1, proof))
     result.errata.append(erratum(
         paper.GAM2, "corrected", r"\gamma_1^{(2)}=\frac{e^{(1+\frac{ip}{d})t}}{(1+e^{2t})^p}\sum_k b_ke^{2kt}"
         r"\ (b_k\text{ from }a=\tfrac{2-p}2+\tfrac{ip}{2d},\ c=\tfrac32+\tfrac{ip}{2d})",
         "the exponent's sign is wrong: the $+i p$ parameters go with $e^(i (p/d) t)$ (as in F_23_pol, "
-        "y^{(d+ip)/(2d)}); gam3 is the complex conjugate", c_pair, c_pair_bad))
+        "$y^((d+i p)/(2 d))$); gam3 is the complex conjugate", c_pair, c_pair_bad))
 
 
 def basis_mp(basis: Basis, t, d):

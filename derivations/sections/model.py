@@ -133,22 +133,22 @@ def run(log: CertificateLog, options) -> DerivationResult:
                            "3.25", inertia_dot - (inertia * omega).cross(omega) - multiplier * E3, RATIONAL)
     inverse_a = inertia.inv() * E3
     printed_lambda = -((inertia * omega).cross(omega)).dot(inverse_a) / E3.dot(inverse_a)
-    c_lambda = certify_zero(log, "printed Lagrange multiplier lambda = -<I w x w, I^-1 a>/<a, I^-1 a>",
+    c_lambda = certify_zero(log, "printed Lagrange multiplier $lam = -inner(cross(I w, w), Iinv a)/inner(a, Iinv a)$",
                             "3.25 (text)", multiplier - printed_lambda, RATIONAL)
     m3 = (inertia * omega).dot(E3)
     printed_ep = m3 * omega.cross(inverse_a)
-    c_ep_printed = certify_zero(log, "printed ep3.26 <I w,a> w x I^-1 a gives d/dt(I w) (first two rows)",
+    c_ep_printed = certify_zero(log, "printed ep3.26 $inner(I w, a) cross(w, Iinv a)$ gives $deriv(I w, t)$ (first two rows)",
                                 paper.EP326.label, list((inertia_dot - printed_ep)[:2]), RATIONAL,
                                 expect=Outcome.FAIL)
     corrected_ep = m3 / E3.dot(inverse_a) * inverse_a.cross(omega)
-    c_ep_corrected = certify_zero(log, "corrected ep3.26 <I w,a>/<a,I^-1 a> I^-1 a x w gives d/dt(I w)",
+    c_ep_corrected = certify_zero(log, "corrected ep3.26 $inner(I w, a)/inner(a, Iinv a) cross(Iinv a, w)$ gives $deriv(I w, t)$",
                                   paper.EP326.label, list((inertia_dot - corrected_ep)[:2]), RATIONAL)
     result.errata.append(erratum(
         paper.EP326, "corrected",
         r"\frac{d}{dt}(\mathbb I\omega)=\frac{\langle\mathbb I\omega,a\rangle}{\langle a,\mathbb I^{-1}a\rangle}"
         r"\,\mathbb I^{-1}a\times\omega",
-        "the printed form drops 1/<a, I^-1 a> and reverses the cross product; it equals the true "
-        "right-hand side times -<a, I^-1 a> = -I11 I22 (det I = 1)",
+        "the printed form drops $1/inner(a, Iinv a)$ and reverses the cross product; it equals the true "
+        "right-hand side times $-inner(a, Iinv a) = -I11 I22$ ($det(I) = 1$)",
         c_ep_printed, c_ep_corrected))
 
     c_gen12 = certify_zero(log, "printed gen12 equals the derived reduced Euler equations", paper.GEN12.label,
@@ -186,10 +186,10 @@ def run(log: CertificateLog, options) -> DerivationResult:
     # 4. general solution by the (u, v) reduction
     u = I13 * w1 + I23 * w2
     v = I23 * w1 / I22 - I13 * w2 / I11
-    c_uv = certify_zero(log, "$u = I13 w1 + I23 w2$, $v = I23 w1/I22 - I13 w2/I11$ obey u' = u v, v' = -u^2/(I11 I22)",
+    c_uv = certify_zero(log, "$u = I13 w1 + I23 w2$, $v = I23 w1/I22 - I13 w2/I11$ obey $deriv(u, t) = u v$, $deriv(v, t) = -u^2/(I11 I22)$",
                         "derived", [lie_derivative(u, field) - u * v,
                                     lie_derivative(v, field) + u**2 / (I11 * I22)], RATIONAL)
-    c_uv_sol = certify_zero(log, "$u = r sech t$, v = -tanh t (r^2 = I11 I22) solve the $(u, v)$ system",
+    c_uv_sol = certify_zero(log, "$u = r sech t$, $v = -tanh t$ ($r^2 = I11 I22$) solve the $(u, v)$ system",
                             "derived", [RING.d_dt(r * S) - (r * S) * (-T),
                                         RING.d_dt(-T) + (r * S) ** 2 / (I11 * I22)], RING.domain)
     solution = derive_general_solution()
@@ -200,8 +200,8 @@ def run(log: CertificateLog, options) -> DerivationResult:
         residual = ode_residual([_realise(solution[x], sign) for x in (w1, w2)], [field[w1], field[w2]],
                                 [w1, w2], t, [I11, I22, I13, I23])
         numeric_certs.append(corroborate(
-            log, f"derived $omega(t)$ solves the reduced Euler equations (r = {'+' if sign > 0 else '-'}"
-                 "sqrt(I11 I22), mpmath.diff)", "eq:o12", residual,
+            log, f"derived $omega(t)$ solves the reduced Euler equations ($r = {'' if sign > 0 else '-'}"
+                 "sqrt(I11 I22)$, mpmath.diff)", "eq:o12", residual,
             {"t": (-3, 3), "I11": (0.5, 3), "I22": (0.5, 3), "I13": (0.2, 1.5), "I23": (0.2, 1.5)},
             seed=20 + sign))
     D = I13**2 * I22 + I23**2 * I11
@@ -242,10 +242,10 @@ def run(log: CertificateLog, options) -> DerivationResult:
                         lie_derivative(F1, field), RATIONAL)
     c_f1p = certify_zero(log, "$F1$ is conserved by the printed gen12", paper.GEN12.label,
                          lie_derivative(F1, paper.GEN12_FIELD), RATIONAL)
-    c_f2 = certify_zero(log, "F2 = <gamma, gamma> is conserved by the Poisson equations", "eq:whole",
+    c_f2 = certify_zero(log, "$F2 = inner(gamma, gamma)$ is conserved by the Poisson equations", "eq:whole",
                         lie_derivative(F2, poisson), RATIONAL)
     energy = (I11 * I22) ** 2 / D
-    c_en = certify_zero(log, "$F1$ on the derived normalised solution equals (I11 I22)^2 / D", "eq:enlev",
+    c_en = certify_zero(log, "$F1$ on the derived normalised solution equals $(I11 I22)^2/D$", "eq:enlev",
                         F1.subs(solution, simultaneous=True) - energy, RING.domain)
     c_en_pr = certify_zero(log, "printed eq:enlev: F1 = 1/D on the printed solution", paper.ENLEV.label,
                            F1.subs(printed, simultaneous=True) - paper.ENLEV_VALUE, RING.domain)

@@ -98,9 +98,9 @@ def proof_errata(log: CertificateLog, result) -> None:
     printed_quadratic = [DELTA * (I22 * I33 - x) ** 2 - p**2 * I22 * x for x in (printed_roots(1), printed_roots(-1))]
     c_quadratic = certify_zero(
         log, "the proof's $I23^2$ (both signs) solve $(I11-I22)(I22 I33 - I23^2)^2 = p^2 I22 I23^2$, i.e. the printed "
-        "eq:necc1 with det I = I11 (I22 I33 - I23^2) = 1", label, printed_quadratic, QUADRATIC_DOMAIN)
+        "eq:necc1 with $det(I) = I11 (I22 I33 - I23^2) = 1$", label, printed_quadratic, QUADRATIC_DOMAIN)
     c_printed_det1 = certify_zero(
-        log, "with det I = 1 the printed eq:necc1 reads (I11-I22)/(I11^2 I22 I23^2) = p^2 (I11 I22 I33 - 1 = I11 I23^2)",
+        log, "with $det(I) = 1$ the printed eq:necc1 reads $(I11-I22)/(I11^2 I22 I23^2) = p^2$ ($I11 I22 I33 - 1 = I11 I23^2$)",
         label, (I11 * I22 * I33 - 1 - I11 * I23**2).subs(I33, (1 / I11 + I23**2) / I22), FIELD_DOMAIN)
     corrected_root = I22 * DELTA / p**2
     c_not_corrected = certify_zero(

@@ -328,7 +328,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
                           rho2_derived - Lam2.subs(r, -r), I_DOMAIN)
     Dm = I11 * I23**2 + I22 * I13**2
     aa, bb, cc1, cc2 = (derived[v] for v in (a_, b_, c1_, c2_))
-    c_g2 = certify_zero(log, "derived coefficients: a c1 + b c2 = 2 r I11 I22 I13 I23 (I11 - I22)/D^2 and "
+    c_g2 = certify_zero(log, "derived coefficients: $a c1 + b c2 = 2 r I11 I22 I13 I23 (I11 - I22)/D^2$ and "
                         "$c1^2 + c2^2 - 4(a^2 + b^2) = 4 Re(Lambda^2)$", "eq:neccg2",
                         [aa * cc1 + bb * cc2 - 2 * r * I11 * I22 * I13 * I23 * (I11 - I22) / Dm**2,
                          cc1**2 + cc2**2 - 4 * (aa**2 + bb**2) - 4 * kova_result.exports["lambda_real"]], I_DOMAIN)
@@ -347,7 +347,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
     # special case: S, gauge U, B0
     A0 = special_result.exports["A0"]
     S_printed = sp.Matrix([[-sp.I * c / d, -sp.I / c, sp.I * c / d], [1 / d, 1, -1 / d], [1, 0, 1]])
-    c_S = certify_zero(log, "printed $S$: S^-1 A0 S = diag(p, 0, -p) (A0 of eq:am2)", "eq:am2",
+    c_S = certify_zero(log, "printed $S$: $S^-1 A0 S = diag(p, 0, -p)$ ($A0$ of eq:am2)", "eq:am2",
                        list(A0 * S_printed - S_printed * sp.diag(p, 0, -p)), PD_DOMAIN)
     result.formula("S", "eq:am2", "Diagonalisation of $A_0$", r"S^{-1}A_0S=\operatorname{diag}(p,0,-p),\ S="
                    + latex(S_printed), c_S)
@@ -381,15 +381,15 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
             r"\text{all solutions of eq:whole are meromorphic iff }I_{13}=0,\ \frac{I_{22}(I_{11}-I_{22})}{I_{23}^2}=p^2"
             r"\text{ or }I_{23}=0,\ \frac{I_{11}(I_{11}-I_{22})}{I_{13}^2}=-p^2,\ p\text{ odd}",
             "for even $p$ the exact Frobenius recursion at $t0 = i pi/2$ meets a non-zero resonance obstruction "
-            "(logarithms for every d > 0); the gauge argument fails because B = U^-1 S^-1 A S U - U^-1 U' has "
+            "(logarithms for every d > 0); the gauge argument fails because $B = U^-1 S^-1 A S U - U^-1 deriv(U, tau)$ has "
             "poles of order > 1, so Theorem 3.5 does not apply",
             *[c for c in log.certificates if c.derivation == NAME and c.label == "Theorem 3.5"][:8], *gauge_certs))
     result.notes.append(
-        "Theorem 3.1, sufficiency (no logarithms for every integer p): " + ("confirmed for every p <= %d." % options.pmax
+        "Theorem 3.1, sufficiency (no logarithms for every integer p): " + ("confirmed for every $p <= %d$." % options.pmax
                                                               if not has_logs else
-                                                              "refuted for p = " + ", ".join(map(str, has_logs))
+                                                              "refuted for $p$ = " + ", ".join(map(str, has_logs))
                                                               + " (a non-zero resonance obstruction); confirmed for "
-                                                              "the other p <= %d." % options.pmax))
+                                                              "the other $p <= %d$." % options.pmax))
 
     # physical bodies (Proposition 4.1) and the displays of its proof
     body_rows = physical_bodies.body_rows(log, options.p_values())

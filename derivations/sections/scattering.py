@@ -92,9 +92,9 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     # 1. reversal symmetry and 2. rigidity
     c_sym = certify_zero(log, "R = diag(-1,1,1): -R (g x omega(-t)) = (R g) x omega(t) with $omega1$ odd, $omega2$ even",
                          "eq:whole", -R * _f(g, (-w1, w2)) - _f(R * sp.Matrix(g), (w1, w2)), POLY)
-    c_rigid = certify_zero(log, "<g, h> is constant along two solutions of eq:whole", "eq:whole",
+    c_rigid = certify_zero(log, "$inner(g, h)$ is constant along two solutions of eq:whole", "eq:whole",
                            sp.Matrix(_f(g, (w1, w2))).dot(sp.Matrix(h)) + sp.Matrix(g).dot(_f(h, (w1, w2))), POLY)
-    c_half = certify_zero(log, "<G, R G> = 1 - 2 G1^2 on |G| = 1", "ss",
+    c_half = certify_zero(log, "$inner(G, R G) = 1 - 2 G1^2$ on $abs(G) = 1$", "ss",
                           sp.Matrix(g).dot(R * sp.Matrix(g)) - (1 - 2 * g1**2), SPHERE)
 
     # 3. z -> 1 exponent, Gamma-function value, the lemma gam_0
@@ -114,8 +114,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
            "b1": _sin_pi(I_UNIT * H), "b2": _sin_pi(I_UNIT / H)}
     sigma1 = sin["a1"] * sin["a2"] * sin["a3"] / (sin["b1"] * sin["b2"])
     cos_y, cosh_x = (E + 1 / E) / 2, (H + 1 / H) / 2
-    c_sigma = certify_zero(log, "sigma1 = sin(pi a1) sin(pi a2) sin(pi a3)/(sin(pi b1) sin(pi b2)) = "
-                           "cos^2(pi p/2)/cosh^2(pi p/(2d)) (E = e^{i pi p/2}, H = e^{pi p/(2d)})", "Prop. 5.1",
+    c_sigma = certify_zero(log, "$sigma1 = sin(pi a1) sin(pi a2) sin(pi a3)/(sin(pi b1) sin(pi b2)) = "
+                           "cos(pi p/2)^2/cosh(pi p/(2 d))^2$ ($E = e^(i pi p/2)$, $H = e^(pi p/(2 d))$)", "Prop. 5.1",
                            sigma1 - cos_y**2 / cosh_x**2, EXPONENTIALS)
     exp_s = -I_UNIT  # exp(pi i s), s = -1/2
     c_limit = certify_zero(log, "after the loop: gamma1(+oo) = 1 - 2 i exp(pi i s) sigma1 = 1 - 2 sigma1 (s = -1/2)",
@@ -140,8 +140,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
 
     # the emitted evaluation form
     tanh_x, sech_x = shx / chx, 1 / chx
-    c_stable = certify_zero(log, "(sqrt(tanh^2 x + sin^2 y sech^2 x), |cos y| sech x) is on the unit circle and its "
-                            "second entry squared is cos^2 y / cosh^2 x", "Theorem 5.2",
+    c_stable = certify_zero(log, "$(sqrt(tanh(x)^2 + sin(y)^2 sech(x)^2), abs(cos(y)) sech(x))$ is on the unit circle and its "
+                            "second entry squared is $cos(y)^2/cosh(x)^2$", "Theorem 5.2",
                             [tanh_x**2 + sy**2 * sech_x**2 + cy**2 * sech_x**2 - 1,
                              (cy * sech_x) ** 2 - cy**2 / chx**2], HALF_ANGLE)
 

@@ -107,7 +107,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                         (2 * zero13["c2/2"]).subs(SUBSTITUTION) + 2 * c * p / d, PD_DOMAIN)
     a_val = zero13["a"]
     p_squared = I22 * (I11 - I22) / I23**2
-    c_p2 = certify_zero(log, "p^2 = a^2 d^2 = I22 (I11 - I22)/I23^2 with $d^2 = (I11 - I22)/I22$", "eq:necc1",
+    c_p2 = certify_zero(log, "$p^2 = a^2 d^2 = I22 (I11 - I22)/I23^2$ with $d^2 = (I11 - I22)/I22$", "eq:necc1",
                         a_val**2 * (I11 - I22) / I22 - p_squared, I_DOMAIN)
     det_one = {I33: model.I33_FROM_DET.subs(I13, 0)}
     necc1 = paper.NECC1_P2.subs(det_one)
@@ -144,7 +144,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                         lie_derivative(F1, paper.printed_sysfin(1)), PD_FIELD)
     c_f1_minus = certify_zero(log, "$F1$ is conserved by eq:sysfin with the - sign", paper.CCALKI.label,
                               lie_derivative(F1, paper.printed_sysfin(-1)), PD_FIELD, expect=Outcome.FAIL)
-    c_f2 = certify_zero(log, "F2 = <gamma, gamma> is conserved by the Poisson equations", paper.CCALKI.label,
+    c_f2 = certify_zero(log, "$F2 = inner(gamma, gamma)$ is conserved by the Poisson equations", paper.CCALKI.label,
                         lie_derivative(paper.CCALKI_F2, poisson), PD_FIELD)
     c_energy = certify_zero(log, "$I11 w1^2 + I22 w2^2 = I22 F1$ under the substitution", paper.CCALKI.label,
                             (I11 * w1**2 + I22 * w2**2).subs(SUBSTITUTION) - I22 * F1, PD_FIELD)
@@ -168,7 +168,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
         closed = [PD_RING.as_function_of_t(solution[v]).subs(c, sign * sp.sqrt(d**2 + 1)) for v in (w1, w2)]
         residual = ode_residual(closed, [sysfin[w1], sysfin[w2]], [w1, w2], t, [p, d])
         numeric_certs.append(corroborate(
-            log, f"$omega(t)$ solves eq:sysfin (c = {'+' if sign > 0 else '-'}sqrt(d^2+1), mpmath.diff)", "omegas",
+            log, f"$omega(t)$ solves eq:sysfin ($c = {'' if sign > 0 else '-'}sqrt(d^2+1)$, mpmath.diff)", "omegas",
             residual, {"t": (-4, 4), "p": (0.3, 9), "d": (0.05, 5)}, seed=40 + sign))
     c_form = certify_zero(log, "printed omegas form w1 = a $tanh t$, $w2 = -a c sech t$ with $a = p/d$", "omegas",
                           [solution[w1] - (p / d) * T, solution[w2] + (p / d) * c * S], PD_RING.domain)
@@ -177,16 +177,16 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                    c_sol, *numeric_certs, c_form)
     result.errata.append(erratum(
         paper.OMEGAS, "corrected", r"\omega_1=a\tanh t,\ \omega_2=-ac\,\mathrm{sech}\,t,\ a=-\frac{I_{22}}{I_{23}}",
-        "the form is confirmed; the printed a = (I22 I33 - I23^2)/I23 = 1/(I11 I23) (det I = 1) is the value "
+        "the form is confirmed; the printed $a = (I22 I33 - I23^2)/I23 = 1/(I11 I23)$ ($det(I) = 1$) is the value "
         "for the printed gen12, $-1/(I11 I22)$ times the derived one", c_form, c_a_pr, c_a_scale))
 
     level = sp.expand(F1.subs(solution, simultaneous=True))
-    c_level = certify_zero(log, "F1 = a^2 c^2 = p^2 (d^2+1)/d^2 on $omega(t)$", "eq:ccalki",
+    c_level = certify_zero(log, "$F1 = a^2 c^2 = p^2 (d^2+1)/d^2$ on $omega(t)$", "eq:ccalki",
                            level - p**2 * (d**2 + 1) / d**2, PD_RING.domain)
     result.formula("level", "eq:ccalki", "Energy level of the normalised solution",
                    r"F_1=a^2c^2=\frac{p^2(d^2+1)}{d^2}", c_level)
     result.errata.append(erratum(paper.F1_VALUE_SENTENCE, "not comparable", r"F_1=a^2c^2=\frac{p^2(d^2+1)}{d^2}",
-                                 "the printed sentence breaks off after 'F_1 = a^2 c^2 ='; completed by derivation",
+                                 "the printed sentence breaks off after '$F1 = a^2 c^2$ ='; completed by derivation",
                                  c_level))
 
     limits = _limits(solution)
@@ -221,7 +221,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
         want = [A0_fun[0](point["p"], point["d"]), A0_fun[1](point["p"], point["d"])]
         return [g - w for g, w in zip(got, want)], max(abs(w) for w in want)
 
-    c_res_num = corroborate(log, "eps * A(i pi/2 + eps) -> A0 (mpmath, eps = 10^-(dps/3))", paper.AM2.label,
+    c_res_num = corroborate(log, "$eps A(i pi/2 + eps)$ tends to $A0$ (mpmath, $eps = 10^(-dps/3)$)", paper.AM2.label,
                             residue_residual, {"p": (0.5, 7), "d": (0.1, 4)}, seed=61, dps=60)
     lam_poly = sp.expand((A0 - lam * sp.eye(3)).det())
     c_char = certify_zero(log, "$det(A0 - lam) = -(lam^3 - p^2 lam)$: eigenvalues $0$, +-p", "eq:ro",
