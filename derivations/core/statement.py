@@ -183,6 +183,8 @@ def _fold(expr):
         return expr.func(*args)
     if isinstance(expr, sp.Mul) and args[0] == 1 and len(args) == 2:
         return args[1]                                     # "1/x" read as 1*x**-1
+    if isinstance(expr, sp.Mul) and any(a == -1 or (a.is_Mul and a.args[0] == -1) for a in args):
+        return sp.Mul(*(sp.Pow(*a.args) if a.is_Pow else a for a in args))   # "-x/y" read as (-1*x)*y**-1: a signed product, printed "- x/y"
     if args == expr.args:
         return expr
     if isinstance(expr, (sp.Add, sp.Mul, sp.Pow)):
