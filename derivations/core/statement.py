@@ -224,7 +224,10 @@ def math(span: str):
     signs = _equals_signs(text)
     if len(signs) > 1:           # a = b = c
         bounds = [-1] + signs + [len(text)]
-        return equal(*(math(text[a + 1:b]) for a, b in zip(bounds, bounds[1:])))
+        try:
+            return equal(*(math(text[a + 1:b]) for a, b in zip(bounds, bounds[1:])))
+        except ValueError as exc:
+            raise ValueError(f"formula {span!r} is not SymPy syntax: {exc}") from None
     try:
         local = {**_names(text), **FUNCTIONS, **CONSTANTS}
         value = parse_expr(text, local_dict=local, global_dict=dict(_PARSER_GLOBALS),
@@ -235,6 +238,8 @@ def math(span: str):
         value = sp.Tuple(*value)
     if not isinstance(value, sp.Basic):
         raise ValueError(f"formula {span!r} reads as {type(value).__name__}, not a SymPy object")
+    if isinstance(value, sp.logic.boolalg.BooleanAtom):   # SymPy decided the relation: the formula is gone
+        raise ValueError(f"formula {span!r} evaluates to {value}: write it so that it stays a formula")
     return _fold(value)
 
 

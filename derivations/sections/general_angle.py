@@ -119,7 +119,7 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     d_sol = tau - a_sol
     ad = (tau * taup * (m + 1 / m) - tau**2 - taup**2) / (m - 1 / m) ** 2
     c_diag = certify_zero(log, "$a + d = tau$ and $m a + d/m = tau_p$ give $a d = (tau tau_p (m + 1/m) - tau^2 - tau_p^2)/"
-                          "(m - 1/m)^2$ ($M_i = Matrix([[a, b], [c, d]])$, $M_oo = diag(m, 1/m)$)", "derived",
+                          "(m - 1/m)^2$ ($M_i$ with rows $(a, b)$, $(c, d)$; $M_oo = diag(m, 1/m)$)", "derived",
                           [m * a_sol + d_sol / m - taup, a_sol * d_sol - ad], Domain("Q(tau, tau_p, m)"))
     Mi = sp.Matrix([[A_, B_], [C_, (1 + B_ * C_) / A_]])          # det M_i = 1
     H = sp.diag(1, -1)

@@ -97,7 +97,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     field = full_field(euler, model_result.exports["poisson"])
 
     point = darboux_point(euler)
-    c_point = certify_zero(log, "Darboux point: $v(d) = -d$ with $m3 = i r$, $r^2 = I11 I22$, gamma = 0 (r -> -r: the "
+    c_point = certify_zero(log, "Darboux point: $v(d) = -d$ with $m3 = i r$, $r^2 = I11 I22$, $gamma = 0$ ($r$ replaced by $-r$: the "
                            "conjugate point)", "eq:d", [field[x].xreplace(point) + point[x]
                                                         for x in STATE], DOMAIN)
     printed_point = {w1: 1 / (I11 * I23 + sp.I * I13 * r), w2: -1 / (I13 * I22 - sp.I * I23 * r),
@@ -109,7 +109,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     c_point_true = certify_zero(log, "printed eq:d is a Darboux point of the derived equations", "eq:d",
                                 [field[x].xreplace(printed_point) + printed_point[x]
                                  for x in STATE], DOMAIN, expect=Outcome.FAIL)
-    c_point_scale = certify_zero(log, "derived Darboux point = -(I11 I22) x printed eq:d", "eq:d",
+    c_point_scale = certify_zero(log, "derived Darboux point equals $-I11 I22$ times the printed eq:d", "eq:d",
                                  [point[x] + I11 * I22 * printed_point[x] for x in (w1, w2)], DOMAIN)
     result.formula("darboux", "eq:d", "Darboux point ($m_3=I_{13}\\bar\\omega_1+I_{23}\\bar\\omega_2=ir$, "
                    "$r=\\sqrt{I_{11}I_{22}}$)",
@@ -141,9 +141,9 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                         "(I11-I22)/D^2$)", "eq:neccg1", imag + 2 * r * I11 * I22 * I13 * I23 * (I11 - I22) / D**2, DOMAIN)
     det_one_D = I11 * I22 * paper_I33() - 1
     printed_g12 = (I11 - I22) * (I11 * I23**2 - I22 * I13**2) / (I11 * I22 * det_one_D**2)
-    c_g12 = certify_zero(log, "printed eq:neccg12 (det I = 1) equals $Re(Lambda^2)$", "eq:neccg12",
+    c_g12 = certify_zero(log, "printed eq:neccg12 ($det(I) = 1$) equals $Re(Lambda^2)$", "eq:neccg12",
                          printed_g12 - real, PLAIN, expect=Outcome.FAIL)
-    c_g12_scale = certify_zero(log, "$Re(Lambda^2) = (I11 I22)^2$ times the printed eq:neccg12 left-hand side (det I = 1)",
+    c_g12_scale = certify_zero(log, "$Re(Lambda^2) = (I11 I22)^2$ times the printed eq:neccg12 left-hand side ($det(I) = 1$)",
                                "eq:neccg12", real - (I11 * I22) ** 2 * printed_g12, PLAIN)
     c_n1 = certify_zero(log, "$I13 = 0$: $Lambda^2 = I22 (I11 - I22)/I23^2$", "eq:necc1",
                         Lam2.subs(I13, 0) - I22 * (I11 - I22) / I23**2, DOMAIN)
@@ -151,7 +151,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                          Lam2.subs(I23, 0) + I11 * (I11 - I22) / I13**2, DOMAIN)
     printed_n11 = (I11 - I22) / (I11 * I22 * (I11 * I22 * paper_I33().subs(I23, 0) - 1))  # printed: = -p^2
     derived_n11 = -Lam2.subs(I23, 0)  # derived: = -p^2
-    c_n11_pr = certify_zero(log, "printed eq:necc11 left-hand side (det I = 1) equals $-Lambda^2$ for $I23 = 0$",
+    c_n11_pr = certify_zero(log, "printed eq:necc11 left-hand side ($det(I) = 1$) equals $-Lambda^2$ for $I23 = 0$",
                             "eq:necc11", printed_n11 - derived_n11, DOMAIN, expect=Outcome.FAIL)
     c_n11_scale = certify_zero(log, "$-Lambda^2$ ($I23 = 0$) equals $(I11 I22)^2$ times the printed eq:necc11 left-hand side",
                                "eq:necc11", derived_n11 - (I11 * I22) ** 2 * printed_n11, DOMAIN)

@@ -129,7 +129,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
     # 2. reduced Euler equations, solved from 3.25
     field, multiplier = derive_euler_field()
     inertia_dot = inertia * sp.Matrix([field[w1], field[w2], 0])
-    c_euler = certify_zero(log, "derived omega', $lam$ satisfy d/dt(I omega) = I omega x omega + lambda a",
+    c_euler = certify_zero(log, "derived $deriv(omega, t)$, $lam$ satisfy $deriv(I omega, t) = cross(I omega, omega) + lam a$",
                            "3.25", inertia_dot - (inertia * omega).cross(omega) - multiplier * E3, RATIONAL)
     inverse_a = inertia.inv() * E3
     printed_lambda = -((inertia * omega).cross(omega)).dot(inverse_a) / E3.dot(inverse_a)
@@ -153,7 +153,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
 
     c_gen12 = certify_zero(log, "printed gen12 equals the derived reduced Euler equations", paper.GEN12.label,
                            [paper.GEN12_FIELD[x] - field[x] for x in (w1, w2)], RATIONAL, expect=Outcome.FAIL)
-    c_gen12_scale = certify_zero(log, "printed gen12 = -(I11 I22) x derived field (time tau = -I11 I22 t)",
+    c_gen12_scale = certify_zero(log, "printed gen12 equals $-I11 I22$ times the derived field (time $tau = -I11 I22 t$)",
                                  paper.GEN12.label,
                                  [paper.GEN12_FIELD[x] + I11 * I22 * field[x] for x in (w1, w2)], RATIONAL)
     entries = sorted({str(s) for v in field.values() for s in v.free_symbols} - {"omega1", "omega2"})
@@ -174,7 +174,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
 
     # 3. Poisson equations
     poisson = derive_poisson_field()
-    c_poisson = certify_zero(log, "gamma' = -hat(omega) gamma (space-fixed gamma) is eq:whole",
+    c_poisson = certify_zero(log, "$deriv(gamma, t) = cross(gamma, omega)$ (space-fixed $gamma$) is eq:whole",
                              paper.WHOLE.label, [poisson[x] - paper.WHOLE_FIELD[x] for x in (g1, g2, g3)],
                              RATIONAL)
     result.formula("poisson", "eq:whole", "Poisson equations",
@@ -247,9 +247,9 @@ def run(log: CertificateLog, options) -> DerivationResult:
     energy = (I11 * I22) ** 2 / D
     c_en = certify_zero(log, "$F1$ on the derived normalised solution equals $(I11 I22)^2/D$", "eq:enlev",
                         F1.subs(solution, simultaneous=True) - energy, RING.domain)
-    c_en_pr = certify_zero(log, "printed eq:enlev: F1 = 1/D on the printed solution", paper.ENLEV.label,
+    c_en_pr = certify_zero(log, "printed eq:enlev: $F1 = 1/D$ on the printed solution", paper.ENLEV.label,
                            F1.subs(printed, simultaneous=True) - paper.ENLEV_VALUE, RING.domain)
-    c_en_true = certify_zero(log, "printed eq:enlev: F1 = 1/D on the derived solution", paper.ENLEV.label,
+    c_en_true = certify_zero(log, "printed eq:enlev: $F1 = 1/D$ on the derived solution", paper.ENLEV.label,
                              F1.subs(solution, simultaneous=True) - paper.ENLEV_VALUE, RING.domain,
                              expect=Outcome.FAIL)
     result.formula("integrals", "section 2", "First integrals",

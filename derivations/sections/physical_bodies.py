@@ -73,7 +73,7 @@ def check_body(I: dict, p_value: int) -> tuple[bool, str]:
     triangle = I["I11"] < I["I22"] + I["I33"] and spread < I["I11"] ** 2
     ok = positive and meromorphic and triangle
     return ok, (f"leading minors {', '.join(str(m) for m in minors)} positive; $p^2 = {p_value**2}$; "
-                f"$I11 < J2+J3 = {I['I22'] + I['I33']}$; $(J2-J3)^2 = {spread}$, below $I11^2 = {I['I11'] ** 2}$")
+                f"$I11 < J2 + J3$ with $J2 + J3 = {I['I22'] + I['I33']}$; $(J2-J3)^2 = {spread}$, below $I11^2 = {I['I11'] ** 2}$")
 
 
 def body_rows(log: CertificateLog, p_values) -> list[dict]:
@@ -84,7 +84,7 @@ def body_rows(log: CertificateLog, p_values) -> list[dict]:
         with stopwatch() as elapsed:
             ok, detail = check_body(body, p_value)
         cert = log.record(Certificate(
-            f"$p = {p_value}$: I = [[5/4,0,0],[0,1,1/(2p)],[0,1/(2p),1]] is positive definite, its eigenvalues satisfy "
+            f"$p = {p_value}$: the inertia tensor $I$ with rows $(5/4, 0, 0)$, $(0, 1, 1/(2 p))$, $(0, 1/(2 p), 1)$ is positive definite, its eigenvalues satisfy "
             "the triangle inequalities, and $I22 (I11-I22)/I23^2 = p^2$", "Proposition 4.1",
             "exact rational arithmetic", Outcome.PASS if ok else Outcome.FAIL, elapsed[0], 3, detail))
         det = body["I11"] * (body["I22"] * body["I33"] - body["I23"] ** 2)

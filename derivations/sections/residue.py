@@ -308,7 +308,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
                                list(A_minus - printed), GENERIC, expect=Outcome.FAIL)
     fixed = printed.copy()
     fixed[1, 2] = a_ - sp.I * c1_ / 2
-    c_am1_fixed = certify_zero(log, "eq:am1 with entry $(2,3) = a - i c1/2$ is the residue at $t0 = +i pi/2$", "eq:am1",
+    c_am1_fixed = certify_zero(log, "eq:am1 with entry (2,3) equal to $a - i c1/2$ is the residue at $t0 = +i pi/2$", "eq:am1",
                                list(A_plus - fixed), GENERIC)
     rho2 = sp.Rational(1, 4) * (c1_**2 + c2_**2 - 4 * (a_**2 + b_**2) + 4 * sp.I * (a_ * c1_ + b_ * c2_))
     c_ro = certify_zero(log, "$det(A0 - rho) = -rho (rho^2 - rho2^2)$ at $+i pi/2$ with $rho2^2$ of eq:ro (conjugate at "
@@ -323,7 +323,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
     derived = {a_: coeff["a"], b_: coeff["b"], c1_: 2 * coeff["c1/2"], c2_: 2 * coeff["c2/2"]}
     Lam2 = kova_result.exports["lambda_real"] + sp.I * kova_result.exports["lambda_imag"]
     rho2_derived = rho2.subs(derived, simultaneous=True)
-    c_link = certify_zero(log, "for the derived solution, $rho2^2$ (eq:ro, t0 = i pi/2) equals the Kovalevskaya "
+    c_link = certify_zero(log, "for the derived solution, $rho2^2$ (eq:ro, $t0 = i pi/2$) equals the Kovalevskaya "
                           "$Lambda^2$ of the Darboux point with the opposite branch of $r$", "eq:ro",
                           rho2_derived - Lam2.subs(r, -r), I_DOMAIN)
     Dm = I11 * I23**2 + I22 * I13**2
@@ -332,7 +332,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
                         "$c1^2 + c2^2 - 4(a^2 + b^2) = 4 Re(Lambda^2)$", "eq:neccg2",
                         [aa * cc1 + bb * cc2 - 2 * r * I11 * I22 * I13 * I23 * (I11 - I22) / Dm**2,
                          cc1**2 + cc2**2 - 4 * (aa**2 + bb**2) - 4 * kova_result.exports["lambda_real"]], I_DOMAIN)
-    c_n2 = certify_zero(log, "$I13 = 0$: c1 = b = 0 and $c2^2 - 4 a^2 = 4 p^2$ with $p^2 = I22 (I11 - I22)/I23^2$",
+    c_n2 = certify_zero(log, "$I13 = 0$: $c1 = b = 0$ and $c2^2 - 4 a^2 = 4 p^2$ with $p^2 = I22 (I11 - I22)/I23^2$",
                         "eq:necc2", [cc1.subs(I13, 0), bb.subs(I13, 0),
                                      (cc2**2 - 4 * aa**2).subs(I13, 0) - 4 * I22 * (I11 - I22) / I23**2], I_DOMAIN)
     result.errata.append(erratum(paper.NECCG2, "confirmed", paper.NECCG2.latex,
@@ -356,7 +356,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
         with stopwatch() as elapsed:
             max_pole, residue_ok = gauge_transformed_pole(S_printed, p_value)
         gauge_certs.append(log.record(Certificate(
-            f"$p = {p_value}$: the printed gauge $U = diag(tau^2p, tau^p, 1)$ gives B = -p Id/tau + holomorphic",
+            f"$p = {p_value}$: the printed gauge $U = diag(tau^2p, tau^p, 1)$ gives $B = -p Id/tau$ + holomorphic",
             "Theorem 3.5", "exact Laurent expansion (Bernoulli series) in $Q(d)[c,i]/(c^2-d^2-1, i^2+1)$",
             Outcome.PASS if (max_pole <= 1 and residue_ok) else Outcome.FAIL, elapsed[0], max_pole,
             f"highest pole order of $B$ is {max_pole}; residue {'is' if residue_ok else 'is not'} $-p Id$",

@@ -100,10 +100,10 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
 
     # 1. the coefficients with I13 = 0, and the parametrisation by p, d
     zero13 = {name: flint_factor.factor(value.subs(I13, 0)) for name, value in coeff.items()}
-    c_coef = certify_zero(log, "with $I13 = 0$: b = c1 = 0, $a = -I22/I23$, $c2/2 = r/I23$", "eq:necc2",
+    c_coef = certify_zero(log, "with $I13 = 0$: $b = c1 = 0$, $a = -I22/I23$, $c2/2 = r/I23$", "eq:necc2",
                           [zero13["b"], zero13["c1/2"], zero13["a"] + I22 / I23, zero13["c2/2"] - r / I23],
                           model.WITH_R)
-    c_c2 = certify_zero(log, "under $a = p/d$, $c^2 = d^2+1$: $c2 = -2 c a$ (branch r = I22 c)", "eq:necc2",
+    c_c2 = certify_zero(log, "under $a = p/d$, $c^2 = d^2+1$: $c2 = -2 c a$ (branch $r = I22 c$)", "eq:necc2",
                         (2 * zero13["c2/2"]).subs(SUBSTITUTION) + 2 * c * p / d, PD_DOMAIN)
     a_val = zero13["a"]
     p_squared = I22 * (I11 - I22) / I23**2
@@ -111,7 +111,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                         a_val**2 * (I11 - I22) / I22 - p_squared, I_DOMAIN)
     det_one = {I33: model.I33_FROM_DET.subs(I13, 0)}
     necc1 = paper.NECC1_P2.subs(det_one)
-    c_necc1 = certify_zero(log, "printed eq:necc1 (I13 = 0, det I = 1) equals the derived $p^2$", "eq:necc1",
+    c_necc1 = certify_zero(log, "printed eq:necc1 ($I13 = 0$, $det(I) = 1$) equals the derived $p^2$", "eq:necc1",
                            necc1 - p_squared, I_DOMAIN, expect=Outcome.FAIL)
     c_necc1_scale = certify_zero(log, "derived $p^2 = (I11 I22)^2$ times the printed eq:necc1 left-hand side", "eq:necc1",
                                  p_squared - (I11 * I22) ** 2 * necc1, I_DOMAIN)
@@ -129,7 +129,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     a_printed = paper.OMEGAS_A.subs(det_one)
     c_a_pr = certify_zero(log, "printed omegas: $a = (I22 I33 - I23^2)/I23$ equals the derived a", "omegas",
                           a_printed - a_val, I_DOMAIN, expect=Outcome.FAIL)
-    c_a_scale = certify_zero(log, "derived $a = -(I11 I22)$ times the printed a (det I = 1)", "omegas",
+    c_a_scale = certify_zero(log, "derived $a = -(I11 I22)$ times the printed $a$ ($det(I) = 1$)", "omegas",
                              a_val + I11 * I22 * a_printed, I_DOMAIN)
 
     # 2. the equations in p, d
@@ -170,7 +170,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
         numeric_certs.append(corroborate(
             log, f"$omega(t)$ solves eq:sysfin ($c = {'' if sign > 0 else '-'}sqrt(d^2+1)$, mpmath.diff)", "omegas",
             residual, {"t": (-4, 4), "p": (0.3, 9), "d": (0.05, 5)}, seed=40 + sign))
-    c_form = certify_zero(log, "printed omegas form w1 = a $tanh t$, $w2 = -a c sech t$ with $a = p/d$", "omegas",
+    c_form = certify_zero(log, "printed omegas form $w1 = a tanh t$, $w2 = -a c sech t$ with $a = p/d$", "omegas",
                           [solution[w1] - (p / d) * T, solution[w2] + (p / d) * c * S], PD_RING.domain)
     result.formula("omegas", "omegas", "Angular velocity ($a=p/d$, $c=\\sqrt{d^2+1}$)",
                    r"\omega_1(t)=\frac{p}{d}\tanh t,\quad \omega_2(t)=-\frac{p\sqrt{d^2+1}}{d}\operatorname{sech}t",
