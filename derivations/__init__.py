@@ -1,6 +1,6 @@
 """Symbolic layer: derive the paper's formulas, certify them, hand them to the renderer.
 
-Never imported by the runtime package or by ``generated/`` (DESIGN.md, data flow).  Three layers,
+Never imported by the runtime package or by ``generated/`` (docs/design.md, data flow).  Three layers,
 each importing only the ones below it (``tests/test_architecture.py`` checks it):
 
 * :mod:`derivations.output` -- the build's stages after the derivations: pipeline (derive ->

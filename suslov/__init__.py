@@ -13,7 +13,7 @@ Precision follows mpmath's habits everywhere: every ``*_mp`` and ``*_ball`` func
 of :mod:`suslov.validated` works at ``mpmath.mp.dps`` unless given ``dps=`` (decimal digits); the ball
 routes also take ``prec=`` (bits, python-flint's unit).
 
-Layers (DESIGN.md, data flow): ``suslov.kernel`` (numerical machinery) and
+Layers (docs/design.md, data flow): ``suslov.kernel`` (numerical machinery) and
 ``suslov.recipes`` (constructions written once, run by the build exactly and by the module
 numerically) need neither SymPy nor ``generated``; the simulator modules import
 ``generated``, never ``derivations``.

@@ -1,4 +1,4 @@
-"""Output directories that are the program's or refused, replaced crash-safely (DESIGN.md, "Generated outputs").
+"""Output directories that are the program's or refused, replaced crash-safely (docs/design.md, "Generated outputs").
 
 Used by the build (``build_formulas.py``: ``generated/`` or ``--out DIR``) and by the simulator
 (``suslov simulate`` / sweeps: ``--out DIR``).  No dependency beyond the standard library, so the

@@ -3,6 +3,7 @@ import json
 import os
 import re
 import shutil
+import subprocess
 
 import pytest
 
@@ -22,6 +23,7 @@ def test_identical_trees_report_nothing(tmp_path):
     result = diff.compare(old, GENERATED)
     assert result.empty()
     assert "no formula, table, certificate or erratum changed" in diff.report(result, "old", "new")
+    assert result.files == {"added": [], "removed": [], "changed": []}
 
 
 def test_changes_are_named_by_what_a_reader_recognises(tmp_path):
@@ -59,7 +61,10 @@ def test_renumbered_certificate_keys_are_not_changes(tmp_path):
     for entry in document["errata"]:
         entry["certificates"] = [key + "0" for key in entry["certificates"]]
     (old / "certificates.json").write_text(json.dumps(document), encoding="utf-8")
-    assert diff.compare(old, GENERATED).empty()
+    result = diff.compare(old, GENERATED)
+    assert result.empty()
+    assert result.files["changed"] == ["certificates.json"]   # the file still differs, and is named
+    assert "file changed: certificates.json" in diff.report(result, "old", "new")
 
 
 def test_bad_old_is_a_clear_error(tmp_path, capsys):
@@ -136,3 +141,30 @@ def test_latexdiff_marks_a_changed_formula_and_a_changed_certificate(tmp_path):
     assert (tmp_path / "diff" / "certificates-diff.pdf").is_file()
     assert r"\DIFadd{\frac{(I_{11}I_{22})^2}{D}" in formulas          # the changed formula, marked
     assert re.search(r"\\certkey\{[^\n]*\\DIFadd\{", certificates)     # the changed key, marked inside \certkey
+
+
+def git_names(old: str) -> set:
+    listed = subprocess.run(["git", "-C", str(ROOT), "diff", "--name-only", old, "--", "generated/"],
+                            capture_output=True, text=True, check=True).stdout.split()
+    return {name[len("generated/"):] for name in listed if name[len("generated/"):] not in diff.VOLATILE}
+
+
+@pytest.mark.parametrize("old", ["7b151a6", "HEAD~3"])
+def test_files_named_are_the_files_git_diff_names(tmp_path, old):
+    """Two real revisions: the files --diff lists are exactly those git diff lists (issue 35: three were missing)."""
+    if subprocess.run(["git", "-C", str(ROOT), "cat-file", "-e", old], capture_output=True).returncode != 0:
+        pytest.skip(f"{old} is not in this clone (shallow?)")
+    tree = diff.materialise(old, ROOT, tmp_path / "old")
+    result = diff.compare(tree, GENERATED)
+    named = set(result.files["added"] + result.files["removed"] + result.files["changed"])
+    assert named == git_names(old)
+    text = diff.report(result, old, "generated")
+    assert all(f"file {kind}: {name}" in text for kind, names in result.files.items() for name in names)
+
+
+def test_a_file_only_on_one_side_is_named(tmp_path):
+    old = copy_of_generated(tmp_path)
+    (old / "galois_group_table.tex").unlink()
+    (old / "obsolete_table.tex").write_text("% gone since\n", encoding="utf-8")
+    result = diff.compare(old, GENERATED)
+    assert result.files["added"] == ["galois_group_table.tex"] and result.files["removed"] == ["obsolete_table.tex"]

@@ -234,7 +234,7 @@ def theorem_52_angle(p, d, dps=60):
 @pytest.mark.parametrize("I23,p", [("-1/3", 3), ("-1/2", 2), ("-100", "0.01")], ids=["pi", "between", "near0"])
 def test_integration_keeps_the_width_of_the_data_at_pi_and_next_to_0(I23, p):
     """I11 = 2, I22 = 1 (d = 1), I13 = 0: p = 1/|I23|; at odd p Delta psi = pi exactly (issue 34)."""
-    enclosure = scattering_angle_enclosure("2", "1", "0", I23, digits=30, method="integration")
+    enclosure = scattering_angle_enclosure("2", "1", "0", I23, dps=30, method="integration")
     assert enclosure.width < 1e-28
     reference = theorem_52_angle(p, 1)
     with mpmath.workdps(60):

@@ -332,3 +332,41 @@ def test_galois_group_effect_maps_the_verdict(tmp_path):
     expected = {"SO(3,C)": 1.0, "reducible": 0.0}.get(monodromy(*body.entries, dps=20).verdict)
     got = rows[(0.0, -0.2)][0]
     assert (expected is None and got != got) or got == expected
+
+
+def test_map_title_inside_the_canvas_equilibrium_undefined_and_grey_readable(tmp_path):
+    """The Galois map (issue 35): every text of the figure lies inside the canvas (matplotlib bounding
+    boxes), the equilibrium I13 = I23 = 0 is a hatched 'undefined' cell (not white 'unknown'), and the two
+    classes differ in lightness, so the map reads in grey print."""
+    import matplotlib.colors as mcolors
+
+    from suslov.simulator.sweep_outputs import GALOIS_COLOURS, map_figure
+    text = ('name = "g"\ntitle = "Differential Galois group of the Poisson equations over $(I_{13}, I_{23})$, '
+            '$I_{11}=2$, $I_{22}=1$, a deliberately long title that must wrap inside the canvas"\n'
+            '[sweep]\nI11 = 2.0\nI22 = 1.0\nI33 = 1.5\nI13 = [-0.3, 0.0, 0.3]\nI23 = [-0.2, 0.0, 0.4]\n'
+            '[effects]\ncompute = ["galois_group"]\nfigures = ["map"]\n')
+    scene = load_scene(write(tmp_path, text))
+    table, _, _, _ = sweep.run_sweep(scene, tmp_path / "out", workers=1)
+    assert [e for e in table["error"] if e] and (tmp_path / "out" / "map.png").is_file()
+    fig = map_figure(scene, table)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    canvas = fig.bbox
+    texts = [fig._suptitle] + [t for ax in fig.axes for t in (ax.title, ax.xaxis.label, ax.yaxis.label)]
+    for artist in texts:
+        box = artist.get_window_extent(renderer)
+        assert box.x0 >= canvas.x0 - 0.5 and box.x1 <= canvas.x1 + 0.5, artist.get_text()
+        assert box.y0 >= canvas.y0 - 0.5 and box.y1 <= canvas.y1 + 0.5, artist.get_text()
+    ax = fig.axes[0]
+    hatched = [patch for patch in ax.patches if patch.get_hatch()]
+    assert len(hatched) == 1                                               # the equilibrium, and only it
+    cell = hatched[0]
+    assert cell.get_x() < 0 < cell.get_x() + cell.get_width() and cell.get_y() < 0 < cell.get_y() + cell.get_height()
+    assert "undefined" in ax.get_legend().get_texts()[0].get_text()
+
+    def grey(colour):
+        r, g, b = mcolors.to_rgb(colour)
+        return 0.2126 * r + 0.7152 * g + 0.0722 * b
+    assert abs(grey(GALOIS_COLOURS[0]) - grey(GALOIS_COLOURS[1])) > 0.4
+    import matplotlib.pyplot as plt
+    plt.close(fig)

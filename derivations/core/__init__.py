@@ -1,4 +1,4 @@
-"""The certification machinery every derivation uses (DESIGN.md, "Certification").
+"""The certification machinery every derivation uses (docs/design.md, "Certification").
 
 Certificates and their log (``certificates``), exact zero tests in canonical domains (``exact``,
 ``rational_field``, ``recipe_rings``), numeric evidence (``numeric``) and ball certificates

@@ -1,4 +1,4 @@
-"""Enclosure certificates: numeric claims decided with python-flint balls (issue 16; DESIGN.md's rules).
+"""Enclosure certificates: numeric claims decided with python-flint balls (issue 16; docs/design.md's rules).
 
 A claim is an inequality about a computable real number, ``|quantity| <= tolerance`` (the
 quantity usually a difference between two routes, e.g. a closed form and a validated
@@ -68,7 +68,7 @@ def certify_enclosure(log: CertificateLog, claim: str, label: str, quantities: C
             if all(o is Outcome.PASS for o in outcomes):
                 outcome = Outcome.PASS
                 break
-    detail = (f"{len(values)} enclosures at {bits} bits ({attempt} doublings): max |q| <= {worst.str(3, radius=False)} "
+    detail = (f"{len(values)} enclosures at {bits} bits ({attempt} doublings): $abs(q) <= {worst.str(3, radius=False)}$ "
               f"vs tolerance {tolerance.str(3, radius=False)}")
     method = f"{METHOD}{': ' + what if what else ''}; a pass proves the stated bound"
     return log.record(Certificate(claim, label, method, outcome, elapsed[0], work, detail, expected=expect))

@@ -1,9 +1,11 @@
 """Certificate records: what was claimed, where the paper states it, how it was checked.
 
 Every formula the build emits is backed by one or more :class:`Certificate`
-records (DESIGN.md, "Certification").  A certificate names
+records (docs/design.md, "Certification").  A certificate names
 
-* the claim in words,
+* the claim in words and mathematics (a :class:`~derivations.core.statement.Statement`: written
+  ``"words $formula$"``, each formula a SymPy object; the JSON and the terminal print its plain
+  text, the documents its LaTeX -- method and detail the same),
 * the paper's equation label (``ep3.26``, ``gen12``, ... of
   ``shared/paper/000_c501a623748984eb.txt``), or ``derived`` for a claim the
   paper does not state,
@@ -26,8 +28,10 @@ from __future__ import annotations
 
 import time
 from contextlib import contextmanager
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from enum import Enum
+
+from derivations.core.statement import Statement, say, text
 
 
 class Outcome(str, Enum):
@@ -42,17 +46,21 @@ class Outcome(str, Enum):
 class Certificate:
     """One certified (or refuted) claim."""
 
-    claim: str
+    claim: Statement
     label: str
-    method: str
+    method: Statement
     outcome: Outcome
     seconds: float
     work: int = 0
-    detail: str = ""
+    detail: Statement = ""
     derivation: str = ""
     expected: Outcome = Outcome.PASS
     key: str = ""
     measured: str = ""
+
+    def __post_init__(self):
+        # text with $formulas$ (or prose only) becomes words and SymPy objects here, once
+        self.claim, self.method, self.detail = say(self.claim), say(self.method), say(self.detail)
 
     @property
     def as_expected(self) -> bool:
@@ -61,12 +69,16 @@ class Certificate:
 
     def deterministic_record(self) -> dict:
         """The fields that are identical across builds and machines (no timing, no float measurement)."""
-        record = asdict(self)
+        record = {name: getattr(self, name) for name in self.__dataclass_fields__}
         record.pop("seconds")
         record.pop("measured")
-        record["outcome"] = self.outcome.value
-        record["expected"] = self.expected.value
+        record.update(claim=text(self.claim), method=text(self.method), detail=text(self.detail),
+                      outcome=self.outcome.value, expected=self.expected.value)
         return record
+
+    def typeset_record(self) -> dict:
+        """:meth:`deterministic_record` with claim, method and detail as statements (for the templates)."""
+        return {**self.deterministic_record(), "claim": self.claim, "method": self.method, "detail": self.detail}
 
 
 class CertificationFailure(RuntimeError):

@@ -1,6 +1,6 @@
 """The common denominator of a rational expression, and the term count of SymPy's ``together``, in python-flint.
 
-Every exact certificate (``derivations/core/exact.py``, DESIGN.md "Certification") writes ``expr`` over a
+Every exact certificate (``derivations/core/exact.py``, docs/design.md "Certification") writes ``expr`` over a
 common denominator, reduces the numerator modulo the extension relations and prints how many terms
 the expanded numerator had ("N terms reduced to 0").  That count has always been the one of
 ``sympy.together``'s numerator, and ``together`` was the largest SymPy cost left on the certificates'

@@ -1,7 +1,7 @@
 """Exact zero tests in canonical polynomial / rational-function domains.
 
 An identity ``expr == 0`` is certified by bringing ``expr`` to a canonical form
-in a ring where "zero" is decidable (DESIGN.md, "Certification"):
+in a ring where "zero" is decidable (docs/design.md, "Certification"):
 
 1. ``expr`` is written over a common denominator, ``num/den``, with ``num`` and
    ``den`` polynomials over Q in the generators of the domain;
@@ -46,6 +46,7 @@ from derivations.core.certificates import (
     stopwatch,
 )
 from derivations.core.common_denominator import common_denominator, polynomial
+from derivations.core.statement import Statement, ring
 
 
 @dataclass(frozen=True)
@@ -64,7 +65,8 @@ class Extension:
 class Domain:
     """Q(variables)[extensions] with the extensions' quadratic relations.
 
-    ``name`` is what certificates print as the method's domain.
+    ``name`` is what certificates print as the method's domain: the ring in the notation of
+    :func:`derivations.core.statement.ring` (``Q(p,d)[c]/(c^2-d^2-1)``), typeset as mathematics.
     """
 
     name: str
@@ -240,14 +242,12 @@ def certify_zero(
                 break
             if not form.is_zero:
                 outcome = Outcome.FAIL
-                detail = (
-                    f"entry {index}: normal form has {len(form.numerator.coeffs())} "
-                    f"non-zero terms, leading {str(form.leading_term())[:80]}"
-                )
+                detail = Statement(f"entry {index}: normal form has {len(form.numerator.coeffs())} "
+                                   "non-zero terms, leading ", form.leading_term())
                 break
     if outcome is Outcome.PASS:
         detail = f"{len(exprs)} identit{'y' if len(exprs) == 1 else 'ies'}, {work} terms reduced to 0"
-    method = f"exact zero test in {domain.name}"
+    method = Statement("exact zero test in ", ring(domain.name))
     return log.record(
         Certificate(claim, label, method, outcome, elapsed[0], work, detail, expected=expect)
     )
@@ -268,5 +268,5 @@ def certify_polys_zero(log: CertificateLog, claim: str, label: str, polys, domai
     outcome = Outcome.FAIL if nonzero else Outcome.PASS
     detail = (f"entry {nonzero[0]} has {len(polys[nonzero[0]].terms())} non-zero terms" if nonzero
               else f"{len(polys)} polynomial(s) identically 0")
-    return log.record(Certificate(claim, label, f"exact zero test in {domain_name}", outcome,
+    return log.record(Certificate(claim, label, Statement("exact zero test in ", ring(domain_name)), outcome,
                                   elapsed[0] + seconds, work, detail, expected=expect))

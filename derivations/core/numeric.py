@@ -1,6 +1,6 @@
 """Numeric corroboration with mpmath at 30+ digits at seeded random points.
 
-A numeric check is *evidence*, not a proof (DESIGN.md, "Certification"): the
+A numeric check is *evidence*, not a proof (docs/design.md, "Certification"): the
 certificate's method says so, with the precision, the number of points, the
 seed and the largest relative residual seen.  It is meant as an independent
 route beside the exact zero tests: ODE residuals are evaluated with
@@ -83,7 +83,7 @@ def corroborate(
             if outcome is Outcome.PASS and worst > mpmath.mpf(10) ** (-digits_required):
                 outcome = Outcome.FAIL
     if not detail:
-        detail = f"{points} points, seed {seed}, max relative residual {mpmath.nstr(worst, 3)}"
+        detail = f"{points} points, seed ${seed}$, max relative residual {mpmath.nstr(worst, 3)}"
     method = f"mpmath corroboration at {dps} digits (evidence, not proof)"
     return log.record(
         Certificate(claim, label, method, outcome, elapsed[0], points, detail, expected=expect)

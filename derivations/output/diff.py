@@ -3,6 +3,10 @@
 OLD is a generated directory or a git revision (its ``generated/`` is read with ``git show``,
 nothing is checked out).  The report names what changed, by what a reader recognises:
 
+* **files**: every generated file that differs from OLD's, or exists on one side only (the set
+  ``git diff --name-only OLD -- generated/`` lists, apart from the volatile timing files and TeX
+  by-products, :data:`VOLATILE`), compared byte for byte;
+
 * **formulas**: the paragraphs of ``formulas_body.tex`` (one per derived formula, keyed by
   section and title): added, removed, changed;
 * **tables**: the per-p, errata, monodromy, Galois, basis and integral tables: which changed,
@@ -39,18 +43,24 @@ TABLES = ("errata_table.tex", "per_p_table.tex", "monodromy_tables.tex", "galois
           "integrals_table.tex")
 
 
+# written by every build but machine- and run-dependent (timings, float measurements, cache hits): untracked
+VOLATILE = ("certificate_costs.json", "certificate_measurements.json", "cache_report.json", "certificate_costs.tex")
+
+
 class DiffError(RuntimeError):
     """OLD cannot be read, or latexdiff/pdflatex is missing or failed; the message says which."""
 
 
 @dataclass
 class TreeDiff:
+    files: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": []})
     formulas: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": []})
     tables: list = field(default_factory=list)
     certificates: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": [], "reworded": []})
     errata: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": []})
 
     def empty(self) -> bool:
+        """No formula, table, certificate or erratum changed (files may still differ: renumbered keys)."""
         return not (self.tables or any(self.formulas.values()) or any(self.certificates.values())
                     or any(self.errata.values()))
 
@@ -62,17 +72,17 @@ def materialise(old: str, repository: Path, into: Path) -> Path:
         if not (candidate / DOCUMENT).is_file():
             raise DiffError(f"--diff {old}: directory without {DOCUMENT} (not a generated tree)")
         return candidate
-    listing = subprocess.run(["git", "-C", str(repository), "ls-tree", "--name-only", f"{old}:generated"],
+    listing = subprocess.run(["git", "-C", str(repository), "ls-tree", "-r", "--name-only", f"{old}:generated"],
                              capture_output=True, text=True, check=False)
     if listing.returncode != 0:
         raise DiffError(f"--diff {old}: neither a directory nor a git revision with a generated/ tree "
                         f"({listing.stderr.strip().splitlines()[-1] if listing.stderr.strip() else 'git failed'})")
     into.mkdir(parents=True, exist_ok=True)
-    for name in listing.stdout.split():
-        if name.endswith((".tex", ".json", ".py")):
-            blob = subprocess.run(["git", "-C", str(repository), "show", f"{old}:generated/{name}"],
-                                  capture_output=True, check=True)
-            (into / name).write_bytes(blob.stdout)
+    for name in listing.stdout.splitlines():   # every tracked file: the file list must see them all
+        blob = subprocess.run(["git", "-C", str(repository), "show", f"{old}:generated/{name}"],
+                              capture_output=True, check=True)
+        (into / name).parent.mkdir(parents=True, exist_ok=True)
+        (into / name).write_bytes(blob.stdout)
     if not (into / DOCUMENT).is_file():
         raise DiffError(f"--diff {old}: that revision has no generated/{DOCUMENT}")
     return into
@@ -147,9 +157,23 @@ def _read(directory: Path, name: str) -> str:
     return path.read_text(encoding="utf-8") if path.is_file() else ""
 
 
+def tree_files(directory: Path) -> set[str]:
+    """The generated files of a tree (relative paths), without volatile files, caches and TeX by-products."""
+    from derivations.output.pdf import is_byproduct
+    directory = Path(directory)
+    return {path.relative_to(directory).as_posix() for path in directory.rglob("*")
+            if path.is_file() and "__pycache__" not in path.parts and path.name not in VOLATILE
+            and not is_byproduct(path.name)}
+
+
 def compare(old: Path, new: Path) -> TreeDiff:
     """What changed from the tree ``old`` to the tree ``new``."""
     result = TreeDiff()
+    left, right = tree_files(old), tree_files(new)
+    result.files["added"] = sorted(right - left)
+    result.files["removed"] = sorted(left - right)
+    result.files["changed"] = sorted(name for name in left & right
+                                     if (Path(old) / name).read_bytes() != (Path(new) / name).read_bytes())
     before, after = (formula_paragraphs(_read(d, "formulas_body.tex")) for d in (old, new))
     result.formulas["added"] = [k for k in after if k not in before]
     result.formulas["removed"] = [k for k in before if k not in after]
@@ -178,9 +202,13 @@ def compare(old: Path, new: Path) -> TreeDiff:
 
 def report(diff: TreeDiff, old_name: str, new_name: str) -> str:
     """The change list, one line per item (what a reader looks for first)."""
-    if diff.empty():
-        return f"{old_name} -> {new_name}: no formula, table, certificate or erratum changed"
     lines = [f"{old_name} -> {new_name}:"]
+    for kind, items in diff.files.items():
+        lines += [f"  file {kind}: {name}" for name in items]
+    if diff.empty():
+        if len(lines) == 1:
+            return f"{old_name} -> {new_name}: no file differs; no formula, table, certificate or erratum changed"
+        return "\n".join(lines + ["  no formula, table, certificate or erratum changed"])
     for kind, items in diff.formulas.items():
         lines += [f"  formula {kind}: {k}" for k in items]
     lines += [f"  table changed: {name} (+{plus} -{minus} lines)" for name, plus, minus in diff.tables]

@@ -47,7 +47,7 @@ HARD_D = (1e-3, 0.5, 3.0, 1e3)
 def _record(log, claim, ok, seconds, points, worst, method=METHOD):
     # the worst ratio itself is CPU-dependent in its last digits: recorded as a volatile measurement
     return log.record(Certificate(claim, "round trip", method, Outcome.PASS if ok else Outcome.FAIL, seconds, points,
-                                  f"{points} points; worst error / bound {'<=' if ok else '>'} 1",
+                                  f"{points} points; worst error {'within' if ok else 'beyond'} the bound",
                                   measured=f"worst error / bound = {worst:.3g}"))
 
 
@@ -84,8 +84,8 @@ def check_first_integral(log: CertificateLog, module, p: int) -> Certificate:
                     ratio = 0.0 if abs(exact) > 1.7e308 else math.inf
                 worst = max(worst, ratio)
                 points += 1
-    return _record(log, f"p = {p}: first_integral float64 within 2e-15 (p+1) s^p sum |g_i| |P_i| + 5e-324 of "
-                   "first_integral_mp, or ValueError where |F3| > 1.7e308", worst <= 1, elapsed[0], points, worst)
+    return _record(log, f"$p = {p}$: first_integral float64 within $2e-15 (p+1) s^p Sum(abs(g_j) abs(P_j), (j, 1, 3)) + 5e-324$ of "
+                   "first_integral_mp, or ValueError where $abs(F3) > 1.7e308$", worst <= 1, elapsed[0], points, worst)
 
 
 def basis_bound(p: int, d: float, t) -> float:
@@ -107,8 +107,8 @@ def check_gamma_basis(log: CertificateLog, module, p: int, core=None) -> list:
                 worst = max(worst, _ratio(error, basis_bound(p, d, t)))
                 worst_det = max(worst_det, abs(np.linalg.det(B[i]) - 1.0))
                 points += 1
-    certs.append(_record(log, f"p = {p}: gamma_basis float64 within 1e-15 (p+1)^1.5 + 4e-16 |p t/d| + 2e-16 |t| of "
-                         "gamma_basis_mp, and det = +1 (a rotation) to 1e-12", worst <= 1 and worst_det <= 1e-12,
+    certs.append(_record(log, f"$p = {p}$: gamma_basis float64 within $1e-15 (p+1)^1.5 + 4e-16 abs(p t/d) + 2e-16 abs(t)$ of "
+                         "gamma_basis_mp, and determinant $+1$ (a rotation) to $1e-12$", worst <= 1 and worst_det <= 1e-12,
                          elapsed[0], points, worst))
     certs.append(check_gamma_basis_far_phase(log, module, p))
     if core is not None:
@@ -135,8 +135,8 @@ def check_gamma_basis_far_phase(log: CertificateLog, module, p: int) -> Certific
                 error = max(abs(B[i][r][c] - float(M[r, c])) for r in range(3) for c in range(3))
                 worst = max(worst, _ratio(error, 1e-15 * (p + 1) ** 1.5 + 2e-16 * min(abs(t), 40.0)))
                 points += 1
-    return _record(log, f"p = {p}: gamma_basis beyond the double-double phase range (|p t/d| from 1e8 to 3e13, the "
-                   "careful mpmath phase) within 1e-15 (p+1)^1.5 + 2e-16 min(|t|, 40) of gamma_basis_mp",
+    return _record(log, f"$p = {p}$: gamma_basis beyond the double-double phase range ($abs(p t/d)$ from $1e8$ to $3e13$, the "
+                   "careful mpmath phase) within $1e-15 (p+1)^1.5 + 2e-16 Min(abs(t), 40)$ of gamma_basis_mp",
                    worst <= 1, elapsed[0], points, worst)
 
 
@@ -256,9 +256,9 @@ def check_general_scattering_angle(log: CertificateLog, module) -> list:
                 _, a, b, _ = module._gauss_invariants(MP, *(mpmath.mpf(x) for x in body))
                 Y = abs(mpmath.sqrt(mpmath.mpc(a, b)).imag)
             worst = max(worst, _ratio(abs(value - exact), 1e-13 * (1 + Y)))
-    return [_record(log, "general_scattering_angle: float64 within absolute 1e-13 (1 + |Im w_-|) of "
-                    "general_scattering_angle_mp (odd p, I13 next to 0, I11 < I22, I11 = I22, next to the "
-                    "equilibrium, a tensor of size 1e150, 24 seeded bodies)", worst <= 1, elapsed[0], len(bodies),
+    return [_record(log, "general_scattering_angle: float64 within absolute $1e-13 (1 + abs(im(w_m)))$ of "
+                    "general_scattering_angle_mp (odd $p$, $I13$ next to 0, $I11 < I22$, $I11 = I22$, next to the "
+                    "equilibrium, a tensor of size $1e150$, 24 seeded bodies)", worst <= 1, elapsed[0], len(bodies),
                     worst)]
 
 
@@ -283,8 +283,8 @@ def check_special_case_chain(log: CertificateLog, module) -> Certificate:
                 worst = max(worst, float(np.max(np.abs(np.array(w) - np.array(v)))) / 1e-11,
                             abs(found.p - p) / (1e-11 * p), abs(found.d - d) / (1e-11 * d), 0.0 if found.p > 0 else 2.0)
                 points += 1
-    return _record(log, "special_case_parameters chains into omega: p > 0, (p, d) recovered, and omega(t, p, d) equals "
-                   "the body's own general solution in the returned frame (to 1e-11)", worst <= 1, elapsed[0], points,
+    return _record(log, "special_case_parameters chains into $omega$: $p > 0$, $(p, d)$ recovered, and $omega(t, p, d)$ equals "
+                   "the body's own general solution in the returned frame (to $1e-11$)", worst <= 1, elapsed[0], points,
                    worst, "numeric evidence (not a certificate): float64, seeded bodies in rotated frames")
 
 
@@ -319,8 +319,8 @@ def check_kovalevskaya_exponents(log: CertificateLog, module, matrix) -> Certifi
             worst = max(worst, max(abs(a - b) for a, b in zip(got, expected)) / 1e-9)
             points += 1
     return _record(log, "kovalevskaya_exponents: the five exponents are the eigenvalues of the certified "
-                   "Kovalevskaya matrix at the body (as multisets, to 1e-9)", worst <= 1, elapsed[0], points, worst,
-                   "numeric evidence (not a certificate): float64 against mpmath eigenvalues of the certified K "
+                   "Kovalevskaya matrix at the body (as multisets, to $1e-9$)", worst <= 1, elapsed[0], points, worst,
+                   "numeric evidence (not a certificate): float64 against mpmath eigenvalues of the certified $K$ "
                    "at 30 digits, eight bodies")
 
 
@@ -346,9 +346,9 @@ def check_meromorphy_cases(log: CertificateLog, module) -> Certificate:
                 failures.append(f"{case} p={p}: got {got.case}, p={got.p}, odd={got.odd}")
             points += 1
     return log.record(Certificate(
-        "meromorphy: case, p and oddness agree with the exact case analysis of bodies built from (p, d) "
-        "(odd, even and non-integer p with I13 = 0; I23 = 0; neither)", "round trip",
-        "numeric evidence (not a certificate): float64 against bodies constructed exactly from p, d",
+        "meromorphy: case, $p$ and oddness agree with the exact case analysis of bodies built from $(p, d)$ "
+        "(odd, even and non-integer $p$ with $I13 = 0$; $I23 = 0$; neither)", "round trip",
+        "numeric evidence (not a certificate): float64 against bodies constructed exactly from $p$, $d$",
         Outcome.FAIL if failures else Outcome.PASS, elapsed[0], points,
         "; ".join(failures) if failures else f"{points} bodies agree"))
 
@@ -421,7 +421,7 @@ def check_meromorphy(log: CertificateLog, module) -> Certificate:
             lam = module.kovalevskaya_exponents(body)[3] - 1
             worst = max(worst, abs(complex(result.p_squared) - lam * lam) / (1e-12 * max(1.0, abs(lam * lam))))
             points += 1
-    return _record(log, "meromorphy's p^2 equals Lambda^2 of kovalevskaya_exponents in the cases I13 = 0, I23 = 0 "
+    return _record(log, "meromorphy's $p^2$ equals $Lambda^2$ of kovalevskaya_exponents in the cases $I13 = 0$, $I23 = 0$ "
                    "and neither", worst <= 1, elapsed[0], points, worst,
                    "numeric evidence (not a certificate): float64, four bodies")
 

@@ -46,6 +46,41 @@ def page_count(log_text: str) -> int:
     return int(found[-1]) if found else 0
 
 
+# What a reader must not meet in a compiled document (issue 35): program syntax outside mathematics,
+# and the broken words a text-to-TeX guesser made.  Matched on ``pdftotext -layout`` output, where
+# typeset mathematics has no ``**``, ``^`` or ``<=`` left: a hit is text the source did not typeset.
+PROGRAM_SYNTAX = {
+    "power **": re.compile(r"\*\*"),
+    "product x*y": re.compile(r"[\w)\]]\s?\*\s?[\w(]"),
+    "<=": re.compile(r"<="), ">=": re.compile(r">="), "!=": re.compile(r"!="),
+    "sqrt(": re.compile(r"\bsqrt\("),
+    "caret ^": re.compile(r"\^"),
+    "angle brackets typed as < >": re.compile(r"<\s*[^<>=\s][^<>]*,[^<>]*>"),
+    "broken 'i.e.'": re.compile(r"\bi\s*[·⋅]\s*e\s*\."),
+    "broken word 'tensor'": re.compile(r"tensor\s*t\u0302|tensor\s*\u0074\u0302|tensor t̂"),
+}
+
+
+def program_syntax(text: str) -> list[str]:
+    """The lines of extracted PDF text with program syntax or a broken word, each prefixed by what it has."""
+    hits = []
+    for line in text.splitlines():
+        found = [name for name, pattern in PROGRAM_SYNTAX.items() if pattern.search(line)]
+        if found:
+            hits.append(f"{', '.join(found)}: {line.strip()}")
+    return hits
+
+
+def pdf_text(pdf: Path) -> str:
+    """``pdftotext -layout`` of a PDF (poppler-utils)."""
+    if shutil.which("pdftotext") is None:
+        raise PdfError("pdftotext not found (Debian: apt-get install poppler-utils)")
+    proc = subprocess.run(["pdftotext", "-layout", str(pdf), "-"], capture_output=True, text=True, timeout=120)
+    if proc.returncode != 0:
+        raise PdfError(f"pdftotext failed on {pdf}: {proc.stderr.strip()}")
+    return proc.stdout
+
+
 class PdfError(RuntimeError):
     """pdflatex is missing or failed; the message says which and where the log is."""
 

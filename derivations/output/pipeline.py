@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from derivations.core.certificates import CertificateLog, Outcome
+from derivations.core.statement import say, text
 from derivations.core.emit import emitted_formulas
 from derivations.core.options import BuildOptions
 from derivations.output import public_api
@@ -180,7 +181,7 @@ def _scattering_keys(build: Build) -> str:
 
 def context(build: Build) -> dict:
     """Everything the templates see (deterministic apart from ``costs``)."""
-    certificates = [c.deterministic_record() for c in build.log.certificates]
+    certificates = [c.typeset_record() for c in build.log.certificates]
     results = [build.results[name] for name in build.names]
     errata = [e for r in results for e in r.errata]
     by_key = {c["key"]: c for c in certificates}
@@ -229,9 +230,9 @@ def certificate_document(build: Build) -> dict:
     return {
         "pmax": ctx["pmax"],
         "derivations": ctx["names"],
-        "certificates": ctx["certificates"],
-        "errata": [vars(e) for e in ctx["errata"]],
-        "notes": {r.name: r.notes for r in ctx["results"]},
+        "certificates": [c.deterministic_record() for c in build.log.certificates],
+        "errata": [{**vars(e), "note": text(say(e.note))} for e in ctx["errata"]],
+        "notes": {r.name: [text(say(note)) for note in r.notes] for r in ctx["results"]},
     }
 
 

@@ -8,8 +8,8 @@ Two environments share one loader on ``templates/``:
 
 Both use ``autoescape=False``, ``trim_blocks=True`` and ``StrictUndefined``
 (a missing value is an error, never an empty string).  Filters turn SymPy
-expressions into Python source (``py``) and escape plain text for TeX
-(``tex``).
+expressions into Python source (``py``), escape plain text for TeX (``tex``) and typeset a
+statement of words and formulas (``claim``: :mod:`derivations.core.statement`).
 """
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
 from derivations.core.typeset import latex
-from derivations.output.claim_tex import claim_latex
+from derivations.core.statement import tex as statement_tex
 
 TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
 
@@ -73,7 +73,7 @@ def _environment(tex: bool) -> jinja2.Environment:
     env.filters["breakable"] = tex_breakable
     env.filters["py"] = python_source
     env.filters["latex"] = latex
-    env.filters["claim"] = claim_latex
+    env.filters["claim"] = statement_tex
     return env
 
 

@@ -51,8 +51,8 @@ from derivations.core.certificates import (
 from derivations.core.recipe_rings import BASIS_RING, INTEGRAL_RING
 
 SECTION = "roundtrip"
-EXACT_METHOD = ("exact zero test of the emitted code evaluated with a SymPy context (numerator expanded in "
-                "Q(arguments)[tanh t, sech t, roots as indeterminates])")
+EXACT_METHOD = ("exact zero test of the emitted code evaluated with a SymPy context (numerator expanded over the "
+                "rationals in the arguments, with $tanh(t)$, $sech(t)$ and the roots as indeterminates)")
 EVIDENCE = "numeric evidence (not a certificate): "
 _counter = itertools.count()
 
@@ -165,15 +165,15 @@ def certify_integral_core(log: CertificateLog, module, objects: dict) -> list:
             expected = _integral_at(ff, d_point)
             differing += [f"first_integral_coefficients(p, 3/7)[{name!r}]" for name in ("P1", "P2", "P3")
                           if public[name] != expected[name]]
-        out.append(_record(log, f"p = {p}: first_integral's exact core reproduces the certified P1~, M2, M3, K, Den, "
-                           "and first_integral_coefficients(p, 3/7) the certified P1, P2, P3", "round trip",
-                           "exact equality in Z[d,w1,w2] (python-flint) and in Q", not differing, elapsed[0],
+        out.append(_record(log, f"$p = {p}$: first_integral's exact core reproduces the certified P1~, $M2$, $M3$, $K$, Den, "
+                           "and first_integral_coefficients(p, 3/7) the certified $P1, P2, P3$", "round trip",
+                           "exact equality in $Z[d,w1,w2]$ (python-flint) and in $Q(d, w1, w2)$", not differing, elapsed[0],
                            ff.terms(), "differs: " + ", ".join(differing) if differing else "identical"))
     return out
 
 
 def _core_claim(p: int) -> str:
-    return f"p = {p}: gamma_basis's exact core reproduces the certified numerators of gamma^(1) and V"
+    return f"$p = {p}$: gamma_basis's exact core reproduces the certified numerators of $gammaI$ and $V$"
 
 
 def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
@@ -185,7 +185,7 @@ def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
             differing = [f"{kind} component {j + 1}" for kind, got, want in (("gamma^(1)", mine[0], real),
                                                                            ("V", mine[1], cplx))
                          for j in range(3) if got.M[j] != want[j]]
-        out.append(_record(log, _core_claim(p), "round trip", "exact equality in Q[x,d,i]/(i^2+1) (python-flint)",
+        out.append(_record(log, _core_claim(p), "round trip", "exact equality in $Q[x,d,i]/(i^2+1)$ (python-flint)",
                            not differing, elapsed[0], sum(len(m) for m in real + cplx),
                            "differs: " + ", ".join(differing) if differing else "identical"))
     return out

@@ -24,7 +24,7 @@ denominators ``(2m+1)^2 d^2 + p^2`` (printed: ``(2m+1) d^2 + p^2``).
 Normalisation: P1 = w1 Q with c_0 = 1, so P1 = w1 F1^((p-1)/2) + ...; the
 leading coefficient is what comes out, not rescaled.
 
-Certification at scale (DESIGN.md: measure, do not guess)
+Certification at scale (docs/design.md: measure, do not guess)
 ---------------------------------------------------------
 Everything is cleared of denominators and tested in
 ``Z[d, w1, w2, g1, g2, g3]`` with python-flint's ``fmpz_mpoly``:
@@ -62,6 +62,7 @@ from derivations.core.certificates import (
 from derivations.core.common_denominator import NotAPolynomial, polynomial
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, certify_polys_zero, certify_zero
+from derivations.core.statement import Statement, ring
 from derivations.core.flint_factor import factor_univariate
 from derivations.core.recipe_rings import INTEGRAL_CTX as CTX
 from derivations.core.recipe_rings import INTEGRAL_RING
@@ -158,21 +159,21 @@ def certify_p(log: CertificateLog, p_value: int, field_pd: dict) -> tuple[Fracti
         dG = scaled_time_derivative(G, scaled_field(field_pd, p_value))
         vanishes = dG.is_zero()
     cert_int = log.record(Certificate(
-        f"p = {p_value}: dF3/dt = 0 on eq:sysfin + Poisson (F3 = P1 g1 + P2 g2 + P3 g3, P1 = w1 Q)",
-        "eq:liniowiec", f"exact zero test in {FLINT_DOMAIN}", Outcome.PASS if vanishes else Outcome.FAIL,
-        elapsed[0], len(G), f"G = K^2 Den F3 has {len(G)} terms; K dG/dt has {len(dG)} terms"))
+        f"$p = {p_value}$: $deriv(F3, t) = 0$ on eq:sysfin + Poisson (F3 = P1 g1 + P2 g2 + P3 g3, P1 = w1 Q)",
+        "eq:liniowiec", Statement("exact zero test in ", ring(FLINT_DOMAIN)), Outcome.PASS if vanishes else Outcome.FAIL,
+        elapsed[0], len(G), f"$G = K^2 Den F3$ has {len(G)} terms; $K deriv(G, t)$ has {len(dG)} terms"))
     cert_poly = log.record(Certificate(
-        f"p = {p_value}: P2 is a polynomial (w1 divides K^2 P1~ - d L~ M3 exactly); P3 is one by construction",
-        "eq:p23", f"exact division in {FLINT_DOMAIN}", Outcome.PASS if divisible else Outcome.FAIL,
-        0.0, ff.terms(), "remainder of the division by w1 is 0" if divisible else "non-zero remainder"))
+        f"$p = {p_value}$: $P2$ is a polynomial ($w1$ divides $K^2 Ptilde_1 - d Ltilde M3$ exactly); $P3$ is one by construction",
+        "eq:p23", Statement("exact division in ", ring(FLINT_DOMAIN)), Outcome.PASS if divisible else Outcome.FAIL,
+        0.0, ff.terms(), "remainder of the division by $w1$ is 0" if divisible else "non-zero remainder"))
     with stopwatch() as elapsed:
         # det d(F1,F2,F3)/d(w1,g1,g2) = 2 dF1/dw1 (g1 P2 - g2 P1) up to the positive factor K^2 Den
         minor = 2 * (2 * (D_**2 + 1) * W1) * (G1 * ff.M2 - G2 * ff.K**2 * ff.P1t)
         independent = not minor.is_zero()
     cert_ind = log.record(Certificate(
-        f"p = {p_value}: F3 is functionally independent of F1, F2 (a 3x3 Jacobian minor is a non-zero polynomial)",
-        "Theorem 6.2", f"non-zero test in {FLINT_DOMAIN}", Outcome.PASS if independent else Outcome.FAIL,
-        elapsed[0], len(minor), f"minor d(F1,F2,F3)/d(w1,g1,g2) has {len(minor)} terms"))
+        f"$p = {p_value}$: $F3$ is functionally independent of $F1, F2$ (a 3x3 Jacobian minor is a non-zero polynomial)",
+        "Theorem 6.2", Statement("non-zero test in ", ring(FLINT_DOMAIN)), Outcome.PASS if independent else Outcome.FAIL,
+        elapsed[0], len(minor), f"minor $d(F1,F2,F3)/d(w1,g1,g2)$ has {len(minor)} terms"))
     return ff, [cert_int, cert_poly, cert_ind]
 
 
@@ -318,43 +319,43 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
             with stopwatch() as built:
                 cross = sympy_integral(p_value, lambda j: hypergeometric_coefficient(j, p_value, d))
                 diffs = [a - b for a, b in zip(rational_polys(ff), cross)]
-            c_cross = certify_polys_zero(log, f"p = {p_value}: fraction-free P1, P2, P3 equal the rational-function "
+            c_cross = certify_polys_zero(log, f"$p = {p_value}$: fraction-free $P1, P2, P3$ equal the rational-function "
                                          "route", "eq:p23", diffs, QD_FIELD, seconds=built[0])
             row["certificates"].append(c_cross.key)
             with stopwatch() as built:
                 printed_sign = sympy_integral(p_value, lambda j: hypergeometric_coefficient(j, p_value, d), p3_sign=1)
                 residual = lie_residual(printed_sign, field)
             refuted["p23"].append(certify_polys_zero(
-                log, f"p = {p_value}: printed eq:p23 (P3 = +(d/p) L P1, P2 from it) gives a first integral",
+                log, f"$p = {p_value}$: printed eq:p23 (P3 = +(d/p) L P1, P2 from it) gives a first integral",
                 paper.P23.label, [residual], QD_FIELD, expect=Outcome.FAIL, seconds=built[0]))
             if p_value >= 3:
                 with stopwatch() as built:
                     printed_q = sympy_integral(p_value, lambda j: printed_pol_sol_coefficient(j, p_value))
                     residual = lie_residual(printed_q, field)
                 refuted["pol_sol"].append(certify_polys_zero(
-                    log, f"p = {p_value}: the printed pol_sol coefficients give a first integral",
+                    log, f"$p = {p_value}$: the printed pol_sol coefficients give a first integral",
                     paper.POL_SOL.label, [residual], QD_FIELD, expect=Outcome.FAIL, seconds=built[0]))
         rows.append(row)
 
     if 1 in forms:
         P = forms[1]
-        c_p1 = certify_zero(log, "printed p = 1 integral = d x derived F3", paper.P1_INTEGRAL.label,
+        c_p1 = certify_zero(log, "printed $p = 1$ integral = d x derived $F3$", paper.P1_INTEGRAL.label,
                             paper.P1_INTEGRAL_F3 - d * (P[0] * g1 + P[1] * g2 + P[2] * g3), QD)
         result.errata.append(erratum(paper.P1_INTEGRAL, "confirmed",
                                      r"F_3=\omega_1\gamma_1+\frac{\omega_2\gamma_2-d\,\omega_2\gamma_3}{d^2+1}",
-                                     "equal up to the constant factor d (normalisation P1 = w1 Q)", c_p1))
+                                     "equal up to the constant factor $d$ (normalisation P1 = w1 Q)", c_p1))
     if refuted["p23"]:
         result.errata.append(erratum(
             paper.P23, "corrected", r"P_3=-\frac{d}{p}\Big(\frac{\omega_2}{d^2+1}\frac{\partial P_1}{\partial\omega_1}"
             r"-\omega_1\frac{\partial P_1}{\partial\omega_2}\Big)",
-            "the printed + sign in P3 contradicts the paper's own eq:partial; with it dF3/dt != 0",
+            "the printed + sign in $P3$ contradicts the paper's own eq:partial; with it $deriv(F3, t) != 0$",
             *refuted["p23"], proofs[min(proofs)]))
     if refuted["pol_sol"]:
         result.errata.append(erratum(
             paper.POL_SOL, "corrected",
             r"\mathcal F_1(z)=\sum_{j=0}^{(p-1)/2}\frac{(2j-1)!!}{(2j)!!}\prod_{m=0}^{j-1}"
             r"\frac{((2m+1)^2-p^2)\,d^2}{(2m+1)^2d^2+p^2}\,z^j",
-            "sign (-1)^j missing and denominators (2m+1)d^2+p^2 instead of (2m+1)^2 d^2+p^2; the printed "
+            "sign $(-1)^j$ missing and denominators $(2m+1)d^2+p^2$ instead of $(2m+1)^2 d^2+p^2$; the printed "
             "Pochhammer symbol (a)_k = a(a+1)...(a+k) has one factor too many (the coefficients above use "
             "(a)_k = a(a+1)...(a+k-1))", *refuted["pol_sol"], proofs[3]))
 

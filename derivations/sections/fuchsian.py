@@ -47,11 +47,11 @@ REQUIRES = ("model", "residue")
 x, j, lam = sp.symbols("x j lambda")
 I_EXT = Extension(j, sp.Integer(-1), "j = i = sqrt(-1)")
 FUCHS = Domain("Q(I11,I22,I13,I23,x)[r,i]/(r^2-I11 I22, i^2+1)", (R_EXT, I_EXT))
-PLAIN = Domain("Q(w1,w2,w3,lambda)")
+PLAIN = Domain("Q(w1,w2,w3,lam)")
 # (label, I11, I22, I13, I23, what the case is): I13 = 0 with odd, even and non-integer p, and two general bodies
-BODIES = (("odd p = 1", "2", "1", "0", "-1"), ("odd p = 3", "2", "1", "0", "-1/3"), ("even p = 2", "2", "1", "0", "-1/2"),
-          ("non-integer p = 5/2", "2", "1", "0", "-2/5"), ("general", "5/4", "1", "3/10", "-1/2"),
-          ("general", "2", "1", "3/10", "-1/5"), ("odd p = 1, I23 = 0 (eq:lina)", "1", "2", "-1", "0"))
+BODIES = (("odd $p = 1$", "2", "1", "0", "-1"), ("odd $p = 3$", "2", "1", "0", "-1/3"), ("even $p = 2$", "2", "1", "0", "-1/2"),
+          ("non-integer $p = 5/2$", "2", "1", "0", "-2/5"), ("general", "5/4", "1", "3/10", "-1/2"),
+          ("general", "2", "1", "3/10", "-1/5"), ("odd $p = 1$, $I23 = 0$ (eq:lina)", "1", "2", "-1", "0"))
 
 
 # the monodromy of the representative bodies needs no other result: started with the build (CertificateLog.prefetch)
@@ -69,21 +69,21 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
     u = [sp.diff(solution[w], T) for w in (w1, w2)]
     v = [sp.diff(solution[w], S) for w in (w1, w2)]
     tanh_x, sech_x = (x**2 - 1) / (x**2 + 1), 2 * x / (x**2 + 1)
-    c_linear = certify_zero(log, "omega of eq:o12 is linear in (tanh t, sech t): omega = u tanh t + v sech t",
+    c_linear = certify_zero(log, "$omega$ of eq:o12 is linear in $(tanh t, sech t)$: $omega = u tanh t + v sech t$",
                             "eq:o12", [solution[w] - (uk * T + vk * S) for w, uk, vk in zip((w1, w2), u, v)], FUCHS)
     partial = [(uk * tanh_x + vk * sech_x) / x - (-uk / x + (uk - j * vk) / (x - j) + (uk + j * vk) / (x + j))
                for uk, vk in zip(u, v)]
-    c_fuchs = certify_zero(log, "in x = e^t, omega/x = -u/x + (u - i v)/(x - i) + (u + i v)/(x + i): the Poisson "
-                           "equations are Fuchsian (simple poles at 0, +-i and infinity)", "eq:whole", partial, FUCHS)
+    c_fuchs = certify_zero(log, "in $x = e^t$, $omega/x = -u/x + (u - i v)/(x - i) + (u + i v)/(x + i)$: the Poisson "
+                           "equations are Fuchsian (simple poles at $0$, $i$, $-i$ and infinity)", "eq:whole", partial, FUCHS)
     W = sp.symbols("W1:4")
-    c_char = certify_zero(log, "det(lambda - C(w)) = lambda^3 + (w.w) lambda: exponents 0, +-i sqrt(w.w) at a simple "
-                          "pole with residue C(w)", "eq:whole",
+    c_char = certify_zero(log, "$det(lam - C(w)) = lam^3 + wdotw lam$: exponents $0$, $pm(i sqrt(wdotw))$ at a simple "
+                          "pole with residue $C(w)$", "eq:whole",
                           sp.expand((lam * sp.eye(3) - cross(W)).det() - (lam**3 + (W[0]**2 + W[1]**2 + W[2]**2) * lam)),
                           PLAIN)
     p_squared = I22 * (I11 - I22) / I23**2
     at_i = [(uk - j * vk).subs(I13, 0) for uk, vk in zip(u, v)]
-    c_exp = certify_zero(log, "for I13 = 0 the residue at x = +-i has w.w = -p^2, p^2 = I22 (I11 - I22)/I23^2: "
-                         "exponents 0, +-p (integers for integer p)", "eq:necc1",
+    c_exp = certify_zero(log, "for $I13 = 0$ the residue at $x = pm(i)$ has $wdotw = -p^2$, $p^2 = I22 (I11 - I22)/I23^2$: "
+                         "exponents $0$, $pm(p)$ (integers for integer $p$)", "eq:necc1",
                          sp.together(at_i[0] ** 2 + at_i[1] ** 2 + p_squared), FUCHS)
     result.formula("fuchs", "eq:whole", "The Poisson equations in $x=e^t$: a Fuchsian system",
                    r"\frac{d\gamma}{dx}=\gamma\,A(x),\quad A(x)=\frac{C(-u)}{x}+\frac{C(u-iv)}{x-i}+\frac{C(u+iv)}{x+i},"
@@ -96,13 +96,13 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
     rows, verdict_certs, summaries = [], [], {}
     for (case, *body), summary in zip(BODIES, log.map_per_p(*PREFETCH[0])):
         summaries[case] = summary
-        claim = (f"body (I11, I22, I13, I23) = ({', '.join(body)}), {case}: the differential Galois group of eq:whole is "
+        claim = (f"body $(I11, I22, I13, I23) = ({', '.join(body)})$, {case}: the differential Galois group of eq:whole is "
                  + ("SO(3,C) (= PSL(2,C)): no Liouvillian solutions" if summary["verdict"] == "SO(3,C)" else
                     "reducible (a torus): Liouvillian" if summary["verdict"] == "reducible" else "decided"))
         outcome = {"SO(3,C)": Outcome.PASS, "reducible": Outcome.PASS}.get(summary["verdict"], Outcome.UNKNOWN)
         detail = "; ".join(f"{text.split(':')[0]}: {outcome_}" for text, outcome_, _ in summary["certificates"])
         cert = log.record(Certificate(claim, "Conclusion", "ball enclosure (python-flint acb): validated Taylor steps "
-                                      f"with majorant bounds along loops in x = e^t, {DIGITS} digits",
+                                      f"with majorant bounds along loops in $x = e^t$, ${DIGITS}$ digits",
                                       outcome, summary["seconds"], len(summary["certificates"]), detail[:400]))
         verdict_certs.append(cert)
         rows.append({"case": case, "body": body, "verdict": summary["verdict"], "liouvillian": summary["liouvillian"],
@@ -115,25 +115,25 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
     # (the p of the exact analysis this build ran: --pmax 1 or 2 has no row for p = 2 or 3)
     agree &= all((logarithms[p_] == "no logarithms") == (p_ % 2 == 1) for p_ in (1, 2, 3) if p_ in logarithms)
     c_agree = log.record(Certificate(
-        "the verdicts agree with the exact Frobenius analysis at t0 = i pi/2: reducible (Liouvillian) exactly for odd p "
-        "(I13 = 0, or I23 = 0 by eq:lina); even and non-integer p and I13 != 0 give SO(3,C)", "Theorem 3.5",
+        "the verdicts agree with the exact Frobenius analysis at $t0 = i pi/2$: reducible (Liouvillian) exactly for odd p "
+        "(I13 = 0, or $I23 = 0$ by eq:lina); even and non-integer $p$ and $I13 != 0$ give $SO(3,C)$", "Theorem 3.5",
         "comparison of the ball verdicts with the exact logarithm verdicts", Outcome.PASS if agree else Outcome.FAIL,
         0.0, len(rows), ", ".join(f"{row['case']}: {row['verdict']}" for row in rows)))
     even = summaries[next(row for row in rows if row["case"].startswith("even"))["case"]]
     finite = next(c for c in even["certificates"] if "infinite order" in c[0])[1]
     c_wrong = log.record(Certificate(
         "the monodromy group of the body with p = 2 (I13 = 0) is finite", "Conclusion",
-        "ball enclosure: an eigenvalue of modulus != 1 refutes it", Outcome.FAIL if finite == "pass" else Outcome.UNKNOWN,
-        0.0, 1, "tr M(x=0) - 1 lies outside [-2, 2]: an element of infinite order", expected=Outcome.FAIL))
+        "ball enclosure: an eigenvalue of modulus other than 1 refutes it", Outcome.FAIL if finite == "pass" else Outcome.UNKNOWN,
+        0.0, 1, "$tr M(x=0) - 1$ lies outside [-2, 2]: an element of infinite order", expected=Outcome.FAIL))
     # the Conclusion's meromorphy, tested on the group itself: a solution meromorphic at t0 = i pi/2 for every
     # initial value means a trivial local monodromy there (x = e^t is biholomorphic near t0, x = i)
     c_meromorphic = log.record(Certificate(
-        "for I13 = 0 and p = 2 every solution of eq:whole is meromorphic at t0 = i pi/2 (the local monodromy, the "
+        "for $I13 = 0$ and $p = 2$ every solution of eq:whole is meromorphic at $t0 = i pi/2$ (the local monodromy, the "
         "loop about x = i, is the identity)", "Conclusion",
-        f"ball enclosure (python-flint acb, {DIGITS} digits): an entry of M(x=i) - I whose ball excludes 0 refutes it",
+        f"ball enclosure (python-flint acb, {DIGITS} digits): an entry of $M(x=i) - I$ whose ball excludes 0 refutes it",
         Outcome.FAIL if even["not_identity_at_i"] else Outcome.UNKNOWN, 0.0, 9,
-        f"Re tr M(x=i) = {even['re_trace_at_i']} (unipotent), M(x=i) != I: a logarithm "
-        "at t0, independently of the exact Frobenius recursion (residue)", expected=Outcome.FAIL))
+        f"Re tr M(x=i) = {even['re_trace_at_i']} (unipotent), $M(x=i) != I$: a logarithm "
+        "at $t0$, independently of the exact Frobenius recursion (residue)", expected=Outcome.FAIL))
     result.formula("galois_group", "Conclusion", "Differential Galois group of the Poisson equations (certified verdicts)",
                    [r"\text{" + row["case"] + r"}:\ (" + ",".join(row["body"]) + r")\ \to\ "
                     + (r"SO(3,\mathbb C)\ (\text{not Liouvillian})" if row["verdict"] == "SO(3,C)" else
@@ -142,8 +142,8 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
     result.errata.append(erratum(
         paper.CONCLUSION_EVEN, "corrected",
         r"\text{even }p:\ \text{logarithms at }t_0=i\pi/2;\ \mathrm{Gal}=SO(3,\mathbb C)",
-        "the Liouvillian part holds (the Galois group is SO(3,C), certified from the monodromy); the meromorphy "
-        "part does not: the exact Frobenius recursion finds logarithms for every even p, and for p = 2 the ball of "
+        "the Liouvillian part holds (the Galois group is $SO(3,C)$, certified from the monodromy); the meromorphy "
+        "part does not: the exact Frobenius recursion finds logarithms for every even $p$, and for $p = 2$ the ball of "
         "the monodromy about x = i excludes the identity", c_agree, c_wrong, c_meromorphic, *verdict_certs))
     result.exports.update(rows=rows)
     return result

@@ -25,7 +25,7 @@ Method
    ``Delta = n`` the Frobenius recursion from the smaller exponent ``(1-n)/2`` is obstructed at
    step n by ``sum_{j=1}^{n} r_j y_{n-j}`` (``r = sum r_j zeta^(j-2)``); zero means no logarithm.
    :mod:`derivations.sections.local_obstruction` computes it exactly in Q(m) (python-flint ``fmpq_poly``,
-   denominators cleared by the least E with den(r_j) | E^j, here m^2 - 1) for s1 and s3 and every
+   denominators cleared by the least E with $den(r_j)$ divides $E^j$, here m^2 - 1) for s1 and s3 and every
    p up to the build's ``galois_pmax`` (40 by default); s2 follows from s1 by the certified
    symmetry (w, m) -> (-w, -m), s4 from s3 by m -> 1/m.  Choice measured: the earlier fraction-free
    recursion in Q(i)[m] with powers of the leading coefficient (m-degree 28p - 1) took about 80 s
@@ -68,7 +68,7 @@ z = sp.Symbol("z")
 cc = sp.Symbol("c", positive=True)
 m = sp.Symbol("m", positive=True)
 SPHERE = Extension(g3, 1 - g1**2 - g2**2, "|gamma| = 1")
-SPHERE_DOMAIN = Domain("Q(omega)(gamma1,gamma2)[gamma3,i]/(|gamma|^2-1, i^2+1)", (SPHERE,))
+SPHERE_DOMAIN = Domain("Q(omega)(gamma1,gamma2)[gamma3,i]/(gamma1^2 + gamma2^2 + gamma3^2 - 1, i^2+1)", (SPHERE,))
 ZC = Domain("Q(c,p)(z)[i]")
 
 
@@ -243,8 +243,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     u1 = (g3 + 1) / (g1 - sp.I * g2)
     u2 = -(g1 + sp.I * g2) / (g3 + 1)
     dot = lambda f: sum(sp.diff(f, v) * rhs for v, rhs in poisson.items())  # noqa: E731
-    c_ric = certify_zero(log, "u1 = (g3+1)/(g1 - i g2) and u2 = -(g1 + i g2)/(g3+1) solve u' = A + B u + C u^2 "
-                         "on |gamma| = 1 (printed A, B, C; omega3 = 0)", "eq:rig, eq:ABC",
+    c_ric = certify_zero(log, "$u1 = (g3+1)/(g1 - i g2)$ and $u2 = -(g1 + i g2)/(g3+1)$ solve $deriv(u, t) = A + B u + C u^2$ "
+                         "on $abs(gamma) = 1$ (printed $A$, $B$, $C$; $omega3 = 0$)", "eq:rig, eq:ABC",
                          [dot(u) - (A + B * u + C * u**2) for u in (u1, u2)], SPHERE_DOMAIN)
     uu1, uu2 = sp.symbols("u1 u2")
     gi = [(1 - uu1 * uu2) / (uu1 - uu2), sp.I * (1 + uu1 * uu2) / (uu1 - uu2), (uu1 + uu2) / (uu1 - uu2)]
@@ -257,7 +257,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     udot = -((B1 * W1 + A1 * W) * Cs * W - W1 * (C1 * W + Cs * W1)) / (Cs * W) ** 2
     c_lin = certify_zero(log, "u = -w'/(C w) solves the Riccati equation iff w'' - B1 w' - A1 w = 0 "
                          "(A1 = -A C, B1 = B + C'/C)", "eq:r2, eq:lin", udot - (As + Bs * u + Cs * u**2),
-                         Domain("Q(W,W',C,C',A,B)"))
+                         Domain("Q(W,Wp,C,Cp,A,B)"))
     result.formula("riccati", "eq:rig, eq:ABC, eq:lin", "Riccati form and the linear equation",
                    r"\dot u=A+Bu+Cu^2,\ A=\tfrac12(\omega_2-i\omega_1),\ B=0,\ C=\tfrac12(\omega_2+i\omega_1);\quad"
                    r"\ddot w-B_1\dot w-A_1w=0,\ A_1=-AC,\ B_1=B+\dot C/C", c_ric, c_gi, c_lin)
@@ -265,11 +265,11 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     pz, qz, N, Qd = derived_pqr()
     ppz, pqz = printed_pq()
     P, Q = printed_PQ()
-    c_pq = certify_zero(log, "in z = e^t: w'' + p(z) w' + q(z) w = 0 with the printed p(z), q(z)", "eq:2rzedu",
+    c_pq = certify_zero(log, "in $z = e^t$: w'' + p(z) w' + q(z) w = 0 with the printed $p(z), q(z)$", "eq:2rzedu",
                         [pz - ppz, qz - pqz], ZC)
     with stopwatch() as elapsed:
         same_r = (N - sp.Poly(P, z, cc, p, domain=sp.QQ_I)).is_zero and (Qd - sp.Poly(Q, z, cc, p, domain=sp.QQ_I)).is_zero
-    c_r = log.record(Certificate("r = p'/2 + p^2/4 - q equals the printed P/Q (p_0 ... p_8, eq:Q)", "eq:rlin, eq:Q",
+    c_r = log.record(Certificate("$r = deriv(p, z)/2 + p^2/4 - q$ equals the printed $P/Q$ ($p_0$ to $p_8$, eq:Q)", "eq:rlin, eq:Q",
                                  "exact polynomial identity in Q(i)[z, c, p]", Outcome.PASS if same_r else Outcome.FAIL,
                                  elapsed[0], len(N.terms())))
     result.formula("rlin", "eq:2rzedu, eq:rlin", "Reduced form $y''=r(z)y$",
@@ -285,7 +285,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     Kp = ring_mp.get_field()
     points = POINTS
     d_m = (m**2 - 1) / (2 * m)
-    c_sing = certify_zero(log, "Q vanishes at s0 = 0, s1,2 = +-i, s3,4 = -i(c -+ d)", "eq:Q",
+    c_sing = certify_zero(log, "$Q$ vanishes at $s0 = 0$, s1,2 = +-i, s3,4 = -i(c -+ d)", "eq:Q",
                           [Q.xreplace(to_m).xreplace({z: pt}) for pt in points.values()], Domain("Q(m)[i]"))
     deltas = {}
     for name, pt in points.items():
@@ -293,12 +293,12 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         deltas[name] = Kp.to_sympy(1 + 4 * rho0)
     deltas["s5"] = Kp.to_sympy(1 + 4 * num.LC() / den.LC())  # r ~ rho/z^2 at infinity
     expected = {"s0": -p**2 / d_m**2, "s5": -p**2 / d_m**2, "s1": p**2, "s2": p**2, "s3": 4, "s4": 4}
-    c_delta = certify_zero(log, "Delta^2 = 1 + 4 rho0: Delta0 = Delta5 = i p/d, Delta1 = Delta2 = p, Delta3 = Delta4 = 2",
+    c_delta = certify_zero(log, "$Delta^2 = 1 + 4 rho0$: Delta0 = Delta5 = i p/d, Delta1 = Delta2 = p, Delta3 = Delta4 = 2",
                            "eq:Deltai", [deltas[k] - expected[k] for k in expected], Domain("Q(m,p)[i]"))
     result.formula("deltas", "eq:Q, eq:Deltai", "Singular points and exponent differences",
                    r"s_0=0,\ s_{1,2}=\pm i,\ s_{3,4}=-i(c\pm d),\ s_5=\infty;\quad \Delta_0=\Delta_5=\frac{ip}{d},\ "
                    r"\Delta_1=\Delta_2=p,\ \Delta_3=\Delta_4=2", c_sing, c_delta)
-    result.errata.append(erratum(paper.DELTAI, "confirmed", paper.DELTAI.latex, "Delta^2 = 1 + 4 rho0 at each pole",
+    result.errata.append(erratum(paper.DELTAI, "confirmed", paper.DELTAI.latex, "$Delta^2 = 1 + 4 rho0$ at each pole",
                                  c_sing, c_delta))
 
     # logarithms, p = 1 .. galois_pmax
@@ -306,20 +306,20 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     rows = []
     # r is invariant under m -> 1/m (it depends on c and d^2 only), which exchanges s3 and s4
     swapped = cancelled((num_e / den_e).xreplace({m: 1 / m}) - num_e / den_e, Domain("Q(m,p)(z)[i]"))
-    c_swap = certify_zero(log, "r(z; 1/m) = r(z; m): the parametrisation's m -> 1/m (d -> -d) exchanges s3 and s4",
+    c_swap = certify_zero(log, "r(z; 1/m) = r(z; m): the parametrisation's m -> 1/m (d -> -d) exchanges $s3$ and $s4$",
                           "eq:rlin", swapped, Domain("Q(m,p)(z)[i]"))
     # the decisions run in w = -i z, where the reduced form is real
     num_w, den_w = rotated_form()
     expected_den = 1024 * m**6 * (m**2 - 1) ** 2 * w**2 * (w - 1) ** 2 * (w + 1) ** 2 * (w + m) ** 2 * (m * w + 1) ** 2
-    c_rot = certify_zero(log, "in w = -i z, y_ww = rt(w) y with rt(w) = -r(i w) = N(w)/Q(w) real (in Q(m, p)(w)), "
-                         "Q a constant times w^2 (w-1)^2 (w+1)^2 (w+m)^2 (mw+1)^2: double poles at w = 0, 1, -1, -m, "
-                         "-1/m, i.e. z = s0, s1, s2, s3, s4", "eq:rlin, eq:Q",
+    c_rot = certify_zero(log, "in $w = -i z$, $y_ww = rt(w) y$ with rt(w) = -r(i w) = N(w)/Q(w) real (in Q(m, p)(w)), "
+                         "Q a constant times $w^2 (w-1)^2 (w+1)^2 (w+m)^2 (mw+1)^2$: double poles at $w = 0$, $1$, $-1$, $-m$, "
+                         "$-1/m$, i.e. $z = s0$, $s1$, $s2$, $s3$, $s4$", "eq:rlin, eq:Q",
                          [num_w - num_w.xreplace({sp.I: -sp.I}), den_w - den_w.xreplace({sp.I: -sp.I}),
                           den_w - sp.expand(expected_den)],
                          Domain("Q(m,p)[w]"))
     mirrored = cancelled((num_w / den_w).xreplace({w: -w, m: -m}) - num_w / den_w, Domain("Q(m,p)(w)"))
     c_mirror = certify_zero(log, "rt(-w; -m) = rt(w; m): w -> -w maps s1 (w = 1) to s2 (w = -1) with m -> -m, so "
-                            "the obstruction at s2 is the one at s1 with m -> -m (zero iff it is)", "eq:rlin",
+                            "the obstruction at $s2$ is the one at $s1$ with m -> -m (zero iff it is)", "eq:rlin",
                             mirrored, Domain("Q(m,p)(w)"))
     # the per-p decisions are independent: run in parallel (CertificateLog.map_per_p), recorded in p order
     values = list(range(1, galois_pmax + 1))
@@ -328,11 +328,11 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         conjecture = ("no log" if p_value % 2 else "log")
         ok = verdict["s1"] == verdict["s2"] == conjecture and verdict["s3"] == verdict["s4"] == "no log"
         cert = log.record(Certificate(
-            f"p = {p_value}: s1, s2 " + ("non-logarithmic for every d > 0" if p_value % 2 else
-                                         "logarithmic for all but finitely many d > 0")
-            + ", s3, s4 non-logarithmic for every d > 0", "Conjecture 5.2",
-            "exact Frobenius obstruction in Q(m) at w = 1 and w = -m (w = -i z, c, d = (m^2+-1)/(2m)), "
-            "denominators cleared by the least E with den(r_j) | E^j (derivations.sections.local_obstruction)",
+            f"p = {p_value}: s1, s2 " + ("non-logarithmic for every $d > 0$" if p_value % 2 else
+                                         "logarithmic for all but finitely many $d > 0$")
+            + ", $s3, s4$ non-logarithmic for every $d > 0$", "Conjecture 5.2",
+            "exact Frobenius obstruction in $Q(m)$ at $w = 1$ and $w = -m$ ($w = -i z$, $c = (m^2 + 1)/(2 m)$, $d = (m^2 - 1)/(2 m)$), "
+            "denominators cleared by the least $E$ with $den(r_j)$ divides $E^j$ (derivations.sections.local_obstruction)",
             Outcome.PASS if ok else Outcome.FAIL, seconds, 4,
             ", ".join(f"{k}: {v}" for k, v in verdict.items())))
         rows.append({"p": p_value, "s1": verdict["s1"], "s2": verdict["s2"], "s3": verdict["s3"], "s4": verdict["s4"],
@@ -341,11 +341,11 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                    r"s_1,s_2\text{ logarithmic}\iff p\text{ even};\quad s_3,s_4\text{ never}", c_swap, c_rot, c_mirror,
                    *[c for c in log.certificates if c.derivation == NAME and c.label == "Conjecture 5.2"])
     result.notes.append(
-        f"Conjecture (section 5.2) decided for every p <= {galois_pmax}: s1, s2 are logarithmic exactly for even p; "
-        "s3, s4 never. The obstruction for odd p vanishes identically in m (all d > 0); for even p it is a non-zero "
-        "element of Q(m), so logarithms occur for all but finitely many d (and the Frobenius recursion of the "
-        "Poisson system itself, section 3.2, shows them for every d > 0). A proof for all p would need the obstruction "
-        "in closed form as a function of p, e.g. from the explicit solutions for odd p and a contiguity relation in p.")
+        f"Conjecture (section 5.2) decided for every $p <= {galois_pmax}$: $s1, s2$ are logarithmic exactly for even $p$; "
+        "$s3, s4$ never. The obstruction for odd $p$ vanishes identically in $m$ (all d > 0); for even $p$ it is a non-zero "
+        "element of $Q(m)$, so logarithms occur for all but finitely many $d$ (and the Frobenius recursion of the "
+        "Poisson system itself, section 3.2, shows them for every d > 0). A proof for all $p$ would need the obstruction "
+        "in closed form as a function of $p$, e.g. from the explicit solutions for odd $p$ and a contiguity relation in $p$.")
 
     # Proposition 5.4 bookkeeping for even p
     prop_rows = []
@@ -363,7 +363,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                     ns.add(int(rational))
             ok = bool(ns) and max(ns) < 0
         cert = log.record(Certificate(
-            f"p = {p_value}: every admissible exponent choice gives deg R = -sum rho_i < 0 (no exponential solution)",
+            f"$p = {p_value}$: every admissible exponent choice gives deg R = -sum rho_i < 0 (no exponential solution)",
             "Proposition 5.4", "enumeration of exponent choices (exact rationals)", Outcome.PASS if ok else Outcome.FAIL,
             elapsed[0], len(ns), f"deg R in {sorted(ns)}"))
         prop_rows.append({"p": p_value, "degrees": sorted(ns), "certificate": cert.key})

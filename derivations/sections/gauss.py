@@ -71,7 +71,7 @@ KAPPA_EXT = Extension(kappa, -W_MINUS2 / 4, "kappa = (i/2) w_-, either root")
 MU_EXT = Extension(mu, -W_PLUS2 / 4, "mu = (i/2) w_+, either root")
 COMPLEX = Domain("Q(u, v, s)[i]/(i^2+1)", (I_EXT,))
 TS = Domain("Q(u, v)[T][S]/(S^2+T^2-1)", (Extension(S, 1 - T**2, "S = sech t"),))
-GAUSS = Domain("Q(U, v1, v2, z)[kappa, mu, i]/(kappa^2 + w_-^2/4, mu^2 + w_+^2/4, i^2+1)", (KAPPA_EXT, MU_EXT, I_EXT))
+GAUSS = Domain("Q(U, v1, v2, z)[kappa, mu, i]/(kappa^2 + w_m^2/4, mu^2 + w_p^2/4, i^2+1)", (KAPPA_EXT, MU_EXT, I_EXT))
 BODY = Domain("Q(I11,I22,I13,I23)[r, i]/(r^2-I11 I22, i^2+1)", (R_EXT, I_EXT))
 PLAIN = Domain("Q(a, b, g)")
 
@@ -120,39 +120,39 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     # 1. s = sinh t: dgamma/dt = (ds/dt) dgamma/ds with s = T/S, ds/dt = cosh t = 1/S
     s_of_t = T / S
     omega_s = [(uk * s_of_t + vk) / (1 + s_of_t**2) for uk, vk in zip(u_[:2], v_[:2])]
-    c_sinh = certify_zero(log, "with s = sinh t: (ds/dt) Omega(s) = u tanh t + v sech t for Omega(s) = (u s + v)/(1 + s^2), "
+    c_sinh = certify_zero(log, "with $s = sinh t$: $(ds/dt) Omega(s) = u tanh t + v sech t$ for $Omega(s) = (u s + v)/(1 + s^2)$, "
                           "so dgamma/ds = gamma x Omega(s)", "eq:whole",
                           [w / S - (uk * T + vk * S) for w, uk, vk in zip(omega_s, u_[:2], v_[:2])], TS)
     partial = [(uk * s + vk) / (1 + s**2) - ((uk - j * vk) / 2 / (s - j) + (uk + j * vk) / 2 / (s + j))
                for uk, vk in zip(u_[:2], v_[:2])]
-    c_partial = certify_zero(log, "Omega(s) = ((u - i v)/2)/(s - i) + ((u + i v)/2)/(s + i): simple poles at s = +-i "
-                             "with residues (u -+ i v)/2", "eq:whole", partial, COMPLEX)
+    c_partial = certify_zero(log, "$Omega(s) = ((u - i v)/2)/(s - i) + ((u + i v)/2)/(s + i)$: simple poles at s = +-i "
+                             "with residues $(u - i v)/2$, $(u + i v)/2$", "eq:whole", partial, COMPLEX)
     zeta = sp.Symbol("zeta")
     at_infinity = [-(uk / zeta + vk) / (1 + 1 / zeta**2) / zeta**2 - (-(uk + vk * zeta) / (zeta * (1 + zeta**2)))
                    for uk, vk in zip(u_[:2], v_[:2])]
-    c_infinity = certify_zero(log, "in zeta = 1/s: dgamma/dzeta = gamma x (-(u + v zeta)/(zeta (1 + zeta^2))): a simple "
-                              "pole at s = oo with residue -u; no other singular point", "eq:whole", at_infinity,
+    c_infinity = certify_zero(log, "in $zeta = 1/s$: $deriv(gamma, zeta) = cross(gamma, -(u + v zeta)/(zeta (1 + zeta^2)))$: a simple "
+                              "pole at $s = oo$ with residue $-u$; no other singular point", "eq:whole", at_infinity,
                               Domain("Q(u, v, zeta)"))
 
     # 2. the spinor lift
-    c_algebra = certify_zero(log, "[S(a), S(b)] = S(a x b) for S(w) = -(i/2)(w1 sigma3 + w2 sigma1 + w3 sigma2): "
-                             "so(3) = sl(2) as Lie algebras", "derived",
+    c_algebra = certify_zero(log, "[S(a), S(b)] = S(a x b) for $S(w) = -(i/2)(w1 sigma3 + w2 sigma1 + w3 sigma2)$: "
+                             "$so(3) = sl(2)$ as Lie algebras", "derived",
                              list(spinor(u_) * spinor(g_) - spinor(g_) * spinor(u_) - spinor(cross(u_, g_))),
                              Domain("Q(a, b)[i]/(i^2+1)", (I_EXT,)))
-    c_lift = certify_zero(log, "spinor lift: Psi' = -S(Omega) Psi gives (Psi S(g0) Psi^-1)' = [-S(Omega), S(g)] = "
-                          "S(g x Omega): the Poisson equations are the adjoint of a traceless 2x2 Fuchsian system",
+    c_lift = certify_zero(log, "spinor lift: $deriv(Psi, s) = -S(Omega) Psi$ gives the derivative of $Psi S(g0) Psi^-1$ as the commutator of "
+                          "$-S(Omega)$ and $S(g)$, which is $S(cross(g, Omega))$: the Poisson equations are the adjoint of a traceless 2x2 Fuchsian system",
                           "eq:whole", list(-spinor(u_) * spinor(g_) + spinor(g_) * spinor(u_) - spinor(cross(g_, u_))),
                           Domain("Q(a, b)[i]/(i^2+1)", (I_EXT,)))
     lam = sp.Symbol("lambda")
     char = (lam * sp.eye(2) + spinor(u_)).det() - (lam**2 + (u_[0] ** 2 + u_[1] ** 2 + u_[2] ** 2) / 4)
-    c_half = certify_zero(log, "det(lambda + S(w)) = lambda^2 + (w.w)/4: the lift's residues have eigenvalues "
-                          "+-(i/2) sqrt(w.w), half the cross product's; exponent differences kappa = (i/2) w_- at "
-                          "s = i, mu = (i/2) w_+ at s = -i, i U at s = oo", "derived", sp.expand(char),
-                          Domain("Q(w, lambda)[i]/(i^2+1)", (I_EXT,)))
+    c_half = certify_zero(log, "$det(lam + S(w)) = lam^2 + wdotw/4$: the lift's residues have eigenvalues "
+                          "$pm((i/2) sqrt(wdotw))$, half the cross product's; exponent differences $kappa = (i/2) w_m$ at "
+                          "$s = i$, $mu = (i/2) w_p$ at $s = -i$, $i U$ at $s = oo$", "derived", sp.expand(char),
+                          Domain("Q(w, lam)[i]/(i^2+1)", (I_EXT,)))
     R = sp.Matrix([[sp.Symbol("cth"), sp.Symbol("sth"), 0], [-sp.Symbol("sth"), sp.Symbol("cth"), 0], [0, 0, 1]])
     rot = lambda vec: list(sp.Matrix([vec]) * R)  # noqa: E731
-    c_frame = certify_zero(log, "(a R) x (b R) = (a x b) R for a rotation R about e3: in the frame u = (U, 0, 0) the "
-                           "Poisson equations keep their form, U^2 = u.u, U v1 = u.v, U v2 = (u x v)_3", "derived",
+    c_frame = certify_zero(log, "$cross(a R, b R) = cross(a, b) R$ for a rotation $R$ about $e3$: in the frame $u = (U, 0, 0)$ the "
+                           "Poisson equations keep their form, $U^2 = inner(u, u)$, $U v1 = inner(u, v)$, $U v2 = uxv3$", "derived",
                            [x - y for x, y in zip(cross(rot(u_), rot(g_)), rot(cross(u_, g_)))],
                            Domain("Q(a, b, sth)[cth]/(cth^2 + sth^2 - 1)",
                                   (Extension(sp.Symbol("cth"), 1 - sp.Symbol("sth") ** 2, "cos theta"),)))
@@ -165,11 +165,11 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     y2 = sp.diff(a, s) * psi1 + a * dpsi1 + sp.diff(b, s) * psi2 + b * dpsi2
     P = 2 * s / (1 + s**2)
     Q = -(sp.diff(a, s) + P * a + a**2 + b * c)
-    c_scalar = certify_zero(log, "y = psi1 of the lift solves y'' + P y' + Q y = 0, P = 2s/(1+s^2), "
-                            "Q = -(a' + P a + a^2 + b c): the off-diagonal b = (i/2) v2/(1+s^2) has no zero, so no "
+    c_scalar = certify_zero(log, "$y = psi1$ of the lift solves $deriv(y, s, s) + P deriv(y, s) + Q y = 0$, $P = 2s/(1+s^2)$, "
+                            "$Q = -(deriv(a, s) + P a + a^2 + b c)$: the off-diagonal $b = (i/2) v2/(1+s^2)$ has no zero, so no "
                             "apparent singularity", "derived", y2 + P * y1 + Q * psi1,
                             Domain("Q(U, v1, v2, s, psi)[i]/(i^2+1)", (I_EXT,)))
-    c_bc = certify_zero(log, "b c = -(v2/2)^2/(1+s^2)^2 and a^2 + b c = -(Omega.Omega)/4 (frame u = (U,0,0))", "derived",
+    c_bc = certify_zero(log, "$b c = -(v2/2)^2/(1+s^2)^2$ and $a^2 + b c = -OmegadotOmega/4$ (frame $u = (U,0,0)$)", "derived",
                         [b * c + (v2 / 2) ** 2 / (1 + s**2) ** 2,
                          a**2 + b * c + ((U * s + v1) ** 2 + v2**2) / (4 * (1 + s**2) ** 2)], COMPLEX)
 
@@ -182,16 +182,16 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     L_over_phi = dz**2 * (F2 + 2 * lphi * F1 + phi2 * F0) + Pz * dz * (F1 + lphi * F0) + Qz * F0
     A_, B_, C_ = (2 + kappa + mu + j * U) / 2, (kappa + mu - j * U) / 2, 1 + kappa
     gauss = z * (1 - z) * F2 + (C_ - (A_ + B_ + 1) * z) * F1 - A_ * B_ * F0
-    c_gauss = certify_zero(log, "z = (1 + i s)/2, y = z^(kappa/2) (1-z)^(mu/2) F: the scalar equation is -1/4 "
-                           "(z(1-z))^-1 times Gauss's z(1-z)F'' + (C-(A+B+1)z)F' - AB F, A = (2+kappa+mu+iU)/2, "
-                           "B = (kappa+mu-iU)/2, C = 1 + kappa (both roots kappa, mu at once)", "eq:ghyp",
+    c_gauss = certify_zero(log, "$z = (1 + i s)/2$, $y = z^(kappa/2) (1-z)^(mu/2) F$: the scalar equation is $-1/4 "
+                           "(z (1-z))^-1$ times Gauss's $z (1-z) deriv(F, z, z) + (C-(A+B+1) z) deriv(F, z) - A B F$, $A = (2+kappa+mu+i U)/2$, "
+                           "$B = (kappa+mu-i U)/2$, $C = 1 + kappa$ (both roots $kappa$, $mu$ at once)", "eq:ghyp",
                            L_over_phi + gauss / (4 * z * (1 - z)), GAUSS)
-    c_points = certify_zero(log, "z = (1 + i s)/2 sends s = i, -i to z = 0, 1 (and oo to oo); 1 + s^2 = 4 z (1-z)",
+    c_points = certify_zero(log, "$z = (1 + i s)/2$ sends $s = i$, $-i$ to $z = 0$, $1$ (and $oo$ to $oo$); $1 + s^2 = 4 z (1-z)$",
                             "derived", [(1 + j * j) / 2, (1 - j * j) / 2 - 1, 1 + s_of_z**2 - 4 * z * (1 - z)],
                             Domain("Q(z)[i]/(i^2+1)", (I_EXT,)))
-    c_exponents = certify_zero(log, "Riemann scheme of the Gauss equation: 1 - C = -kappa (z = 0), C - A - B = -mu "
-                               "(z = 1), A - B = 1 + i U (z = oo): the lift's exponent differences kappa, mu, i U, the last shifted by "
-                               "the integer 1 in the scalar equation of psi1", "derived",
+    c_exponents = certify_zero(log, "Riemann scheme of the Gauss equation: $1 - C = -kappa$ ($z = 0$), $C - A - B = -mu$ "
+                               "($z = 1$), $A - B = 1 + i U$ ($z = oo$): the lift's exponent differences $kappa$, $mu$, $i U$, the last shifted by "
+                               "the integer 1 in the scalar equation of $psi1$", "derived",
                                [1 - C_ + kappa, C_ - A_ - B_ + mu, A_ - B_ - 1 - j * U], GAUSS)
 
     # 5. the body's invariants, from the certified omega (model)
@@ -199,15 +199,15 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     u = [sp.diff(solution[w], T) for w in (w1, w2)]
     v = [sp.diff(solution[w], S) for w in (w1, w2)]
     inv = body_invariants(u, v)
-    c_inv = certify_zero(log, "U^2 = I11^2 I22^2 (I13^2 + I23^2)/D^2, |u|^2 - |v|^2 = I11 I22 (I11 - I22)(I13^2 I22 - "
-                         "I11 I23^2)/D^2, u.v = r I11 I13 I22 I23 (I11 - I22)/D^2, (u x v)_3 = -I11 I22 r/D, "
-                         "D = I11 I23^2 + I13^2 I22, (u x v)_3^2 = I11^3 I22^3/D^2", "eq:o12",
+    c_inv = certify_zero(log, "$U^2 = I11^2 I22^2 (I13^2 + I23^2)/D^2$, $abs(u)^2 - abs(v)^2 = I11 I22 (I11 - I22)(I13^2 I22 - "
+                         "I11 I23^2)/D^2$, $inner(u, v) = r I11 I13 I22 I23 (I11 - I22)/D^2$, $uxv3 = -I11 I22 r/D$, "
+                         "$D = I11 I23^2 + I13^2 I22$, $uxv3^2 = I11^3 I22^3/D^2$", "eq:o12",
                          [inv[k] - INVARIANTS[k] for k in INVARIANTS] + [inv["cross"] ** 2 - I11**3 * I22**3 / DEN**2],
                          BODY)
     lam2 = (I11 * I22 * (I11 - I22) * (I11 * I23**2 - I13**2 * I22) - 2 * j * I11 * I13 * I22 * I23 * r * (I11 - I22)) / DEN**2
     w_minus2 = inv["a"] - 2 * j * inv["uv"]
-    c_lambda = certify_zero(log, "w_-^2 = (u - i v).(u - i v) = -conj(Lambda^2) (Lambda: the Kovalevskaya exponent "
-                            "of eq:kowal, m3 = i sqrt(I11 I22)); for I13 = 0 it is -p^2", "eq:kowal",
+    c_lambda = certify_zero(log, "$w_m^2 = inner(u - i v, u - i v) = -conjugate(Lambda^2)$ ($Lambda$: the Kovalevskaya exponent "
+                            "of eq:kowal, $m3 = i sqrt(I11 I22)$); for $I13 = 0$ it is $-p^2$", "eq:kowal",
                             [w_minus2 + lam2.subs(j, -j), (w_minus2 + I22 * (I11 - I22) / I23**2).subs(I13, 0)], BODY)
 
     result.formula("gauss_system", "eq:whole", "The Poisson equations in $s=\\sinh t$: three singular points",

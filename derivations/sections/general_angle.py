@@ -118,14 +118,14 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     a_sol = (taup - tau / m) / (m - 1 / m)
     d_sol = tau - a_sol
     ad = (tau * taup * (m + 1 / m) - tau**2 - taup**2) / (m - 1 / m) ** 2
-    c_diag = certify_zero(log, "a + d = tau and m a + d/m = tau' give a d = (tau tau' (m + 1/m) - tau^2 - tau'^2)/"
-                          "(m - 1/m)^2 (M_i = [[a, b], [c, d]], M_oo = diag(m, 1/m))", "derived",
-                          [m * a_sol + d_sol / m - taup, a_sol * d_sol - ad], Domain("Q(tau, tau', m)"))
+    c_diag = certify_zero(log, "$a + d = tau$ and $m a + d/m = tau_p$ give $a d = (tau tau_p (m + 1/m) - tau^2 - tau_p^2)/"
+                          "(m - 1/m)^2$ ($M_i$ with rows $(a, b)$, $(c, d)$; $M_oo = diag(m, 1/m)$)", "derived",
+                          [m * a_sol + d_sol / m - taup, a_sol * d_sol - ad], Domain("Q(tau, tau_p, m)"))
     Mi = sp.Matrix([[A_, B_], [C_, (1 + B_ * C_) / A_]])          # det M_i = 1
     H = sp.diag(1, -1)
     conj = Mi * H * Mi.inv()
-    c_entry = certify_zero(log, "M H M^-1 has H-coefficient a d + b c = 2 a d - 1 (det M = 1): cos Delta psi = 2 a d - 1, "
-                           "cos^2(Delta psi/2) = a d", "ss",
+    c_entry = certify_zero(log, "$M H M^-1$ has $H$-coefficient $a d + b c = 2 a d - 1$ ($det(M) = 1$): $cos(Deltapsi) = 2 a d - 1$, "
+                           "$cos(Deltapsi/2)^2 = a d$", "ss",
                            [(conj[0, 0] - conj[1, 1]) / 2 - (A_ * Mi[1, 1] + B_ * C_), conj[0, 0] + conj[1, 1],
                             A_ * Mi[1, 1] + B_ * C_ - (2 * A_ * Mi[1, 1] - 1)], Domain("Q(a, b, c)"))
 
@@ -136,21 +136,21 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     m_v = 1 / Eh**2
     cosh_piU, sinh_piU = (Eh**2 + 1 / Eh**2) / 2, (Eh**2 - 1 / Eh**2) / 2
     real_form = (cosh_piU * tau_v * taup_v - (tau_v**2 + taup_v**2) / 2) / (2 * sinh_piU**2)
-    c_real = certify_zero(log, "tau' = conj(tau) (mu = -conj(kappa)), m = e^(-pi U): a d = [cosh(pi U)|tau|^2 - "
-                          "Re(tau^2)]/(2 sinh^2(pi U))", "derived",
+    c_real = certify_zero(log, "$tau_p = conjugate(tau)$ ($mu = -conjugate(kappa)$), $m = e^(-pi U)$: $a d = (cosh(pi U) abs(tau)^2 - "
+                          "Re(tau^2))/(2 sinh(pi U)^2)$", "derived",
                           ad.subs({tau: tau_v, taup: taup_v, m: m_v}) - real_form, TRIG)
 
     # 3. the evaluation form
     sin2, cos2 = _stable_parts(Eh, Eg, sy, cy)
-    c_stable = certify_zero(log, "evaluation form: cos^2 = c^2 S^2 + e^(-2g) expm1(2g-2h)^2 q/E^2 equals the real form, "
-                            "sin^2 = expm1(-2g) expm1(2g-4h) q/E^2 equals 1 - cos^2 (q = T^2 + s^2 S^2, E = expm1(-2h))",
+    c_stable = certify_zero(log, "evaluation form: $c^2 S^2 + e^(-2 g) expm1(2 g-2 h)^2 q/E^2$ equals the real form of $cos(Deltapsi/2)^2$, "
+                            "$expm1(-2 g) expm1(2 g-4 h) q/E^2$ equals $1 - cos(Deltapsi/2)^2$ ($q = T^2 + s^2 S^2$, $E = expm1(-2 h)$)",
                             "derived", [cos2 - real_form, sin2 + cos2 - 1], TRIG)
     Uq, aq, bq, mq = sp.symbols("U a_w b_w mod")
     X2 = (mq + aq) / 2
     v1s, v2s = sp.symbols("v1 v2")
     frame = {aq: Uq**2 - v1s**2 - v2s**2, bq: -2 * Uq * v1s}
-    c_gap = certify_zero(log, "X^2 = (|w^2| + a)/2 with |w^2|^2 = a^2 + b^2: (U^2 - X^2)(2U^2 - a + |w^2|) = 2 U^2 v2^2 = "
-                         "2 (u x v)_3^2 (frame u = (U, 0, 0)): the gap U - X without cancellation", "derived",
+    c_gap = certify_zero(log, "$X^2 = (abs(w^2) + a)/2$ with $abs(w^2)^2 = a^2 + b^2$: $(U^2 - X^2)(2 U^2 - a + abs(w^2)) = 2 U^2 v2^2 = "
+                         "2 uxv3^2$ (frame $u = (U, 0, 0)$): the gap $U - X$ without cancellation", "derived",
                          ((Uq**2 - X2) * (2 * Uq**2 - aq + mq) - 2 * Uq**2 * v2s**2).subs(frame),
                          Domain("Q(U, v1, v2)[mod]/(mod^2 - a^2 - b^2)",
                                 (Extension(mq, (aq**2 + bq**2).subs(frame), "|w_-^2|"),)))
@@ -158,13 +158,13 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     # 4. Theorem 5.2 as the case I13 = 0
     p_, d_ = sp.symbols("p d", positive=True)
     U2_zero = INVARIANTS["U2"].subs(I13, 0)
-    c_U = certify_zero(log, "I13 = 0: U^2 = p^2/d^2 with p^2 = I22 (I11 - I22)/I23^2, d^2 = (I11 - I22)/I22", "Theorem 5.2",
+    c_U = certify_zero(log, "$I13 = 0$: $U^2 = p^2/d^2$ with $p^2 = I22 (I11 - I22)/I23^2$, $d^2 = (I11 - I22)/I22$", "Theorem 5.2",
                        U2_zero - (I22 * (I11 - I22) / I23**2) / ((I11 - I22) / I22), Domain("Q(I11, I22, I23)"))
     T_, S_ = (Eh**2 - 1) / (Eh**2 + 1), 2 * Eh / (Eh**2 + 1)
     sin2_0, cos2_0 = _stable_parts(Eh, Eh, sy, cy)           # g = h: X = 0
-    c_reduction = certify_zero(log, "I13 = 0 (X = 0, g = h = pi |p|/(2d)): the evaluation form is Theorem 5.2's, "
-                               "sin^2 = tanh^2 x + s^2 sech^2 x, cos^2 = c^2 sech^2 x, and a d = "
-                               "cos^2(pi p/2)/cosh^2(pi p/(2d))", "Theorem 5.2",
+    c_reduction = certify_zero(log, "$I13 = 0$ ($X = 0$, $g = h = pi abs(p)/(2 d)$): the evaluation form is Theorem 5.2's, "
+                               "$sin(Deltapsi/2)^2 = tanh(x)^2 + s^2 sech(x)^2$, $cos(Deltapsi/2)^2 = c^2 sech(x)^2$, and $a d = "
+                               "cos(pi p/2)^2/cosh(pi p/(2 d))^2$", "Theorem 5.2",
                                [sin2_0 - (T_**2 + sy**2 * S_**2), cos2_0 - cy**2 * S_**2,
                                 real_form.subs(Eg, Eh) - cy**2 / ((Eh + 1 / Eh) / 2) ** 2], TRIG)
 
@@ -177,15 +177,15 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     deep = [o for o, job in zip(outcomes, jobs) if job[1] == "angle" and job[2] == DEEP_DIGITS]
     certs = []
     for rows, digits, what, route in (
-            (traces, TRACE_DIGITS, "relative distance of the traces tr M(x=0), tr M(x=+-i) and the pair "
-             "{tr M(x=0) M(x=i), tr M(x=0)^-1 M(x=i)} from the closed-form monodromy", "complex-path monodromy in x = e^t"),
+            (traces, TRACE_DIGITS, "relative distance of the traces of $M_0$, $M_i$, $M_(-i)$, $M_0 M_i$ and $M_0^-1 M_i$ "
+             "(the monodromy about $x = 0$, $x = i$, $x = -i$) from the closed-form monodromy", "complex-path monodromy in $x = e^t$"),
             (angles, ANGLE_DIGITS, "distance of the closed-form angle from the ss enclosure", "ss enclosure"),
             (deep, DEEP_DIGITS, "distance of the closed-form angle from the ss enclosure", "ss enclosure")):
         tolerance = 10.0 ** (10 - digits)
         worst = max(row["relative_float" if "relative_float" in row else "difference_float"] for row in rows)
         ok = all(row.get("relative_float", row.get("difference_float")) <= tolerance for row in rows)
         certs.append(log.record(Certificate(
-            f"{len(rows)} seeded bodies (I13 I23 != 0, seed 37): {what} is at most 1e-{digits - 10}", "derived",
+            f"{len(rows)} seeded bodies ($I13 I23$ non-zero, seed 37): {what} is at most $1e-{digits - 10}$", "derived",
             f"ball enclosure (python-flint acb/arb): {route}, {digits} digits, against the closed form in "
             "complex balls; a pass proves the stated bound", Outcome.PASS if ok else Outcome.FAIL,
             sum(row["seconds"] for row in rows), len(rows), f"largest {worst:.2e}; bodies {', '.join('(' + ', '.join(r['body']) + ')' for r in rows[:3])}, ...")))

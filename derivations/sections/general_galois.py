@@ -39,14 +39,14 @@ REAL = Domain("Q(U, v1, v2, X, Y)[i]/(i^2+1)", (I_EXT,))
 
 def run(log: CertificateLog, options, gauss_result, fuchsian_result) -> DerivationResult:
     result = DerivationResult(NAME)
-    c_conj = certify_zero(log, "for real u, v: w_+^2 = conj(w_-^2), so w_+ = conj(w_-) and mu = -conj(kappa)", "derived",
+    c_conj = certify_zero(log, "for real $u$, $v$: $w_p^2 = conjugate(w_m^2)$, so $w_p = conjugate(w_m)$ and $mu = -conjugate(kappa)$", "derived",
                           W_PLUS2 - W_MINUS2.subs(j, -j), REAL)
     k_, m_ = j / 2 * (X + j * Y), j / 2 * (X - j * Y)
-    c_sum = certify_zero(log, "w_- = X + iY: kappa + mu = i X (imaginary), kappa - mu = -Y (real), "
-                         "Im(i X +- (1 + i U)) = X +- U, Im(-Y +- (1 + i U)) = +-U != 0", "derived",
+    c_sum = certify_zero(log, "$w_m = X + i Y$: $kappa + mu = i X$ (imaginary), $kappa - mu = -Y$ (real), "
+                         "$Im(i X + 1 + i U) = X + U$, $Im(i X - 1 - i U) = X - U$, $Im(-Y + 1 + i U) = U$, non-zero", "derived",
                          [k_ + m_ - j * X, k_ - m_ + Y,
                           ((j * X + (1 + j * U)) - (j * X + (1 + j * U)).subs(j, -j)) / (2 * j) - (X + U)], REAL)
-    c_half = certify_zero(log, "kappa^2 = -w_-^2/4: kappa = 1/2 + l (half-odd) iff w_-^2 = -(2l + 1)^2", "derived",
+    c_half = certify_zero(log, "$kappa^2 = -w_m^2/4$: $kappa = 1/2 + l$ (half-odd) iff $w_m^2 = -(2 l + 1)^2$", "derived",
                           (kappa**2 + W_MINUS2 / 4).subs(kappa, (2 * sp.Symbol("l") + 1) / 2)
                           - (W_MINUS2 + (2 * sp.Symbol("l") + 1) ** 2) / 4, REAL)
     rows = fuchsian_result.exports["rows"]
@@ -57,7 +57,7 @@ def run(log: CertificateLog, options, gauss_result, fuchsian_result) -> Derivati
             disagreements.append(f"{row['body']}: balls {row['verdict']}, exact {exact.group}")
     c_agree = log.record(Certificate(
         "the exact decision (Kimura) agrees with the ball verdicts of the complex-path monodromy on the representative "
-        "bodies (odd, even and non-integer p, I23 = 0, general bodies)", "Conclusion",
+        "bodies (odd, even and non-integer $p$, $I23 = 0$, general bodies)", "Conclusion",
         "comparison of the exact verdicts with the certified ball verdicts", Outcome.FAIL if disagreements else Outcome.PASS,
         0.0, len(rows), "; ".join(disagreements) or ", ".join(f"({', '.join(r['body'])}): {r['verdict']}" for r in rows)))
     keys = gauss_result.exports["certificates"]

@@ -102,7 +102,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     a1 = d * p * (2 * (d**2 + 1) * w1**2 - w2**2)
     a2 = (d**2 + 1) * w1 * ((d**2 + p**2) * w1**2 + p**2 * w2**2)
     a3 = -d * p * w2**2 * ((d**2 + 1) * w1**2 + w2**2)
-    c_prep = certify_zero(log, "gamma1 solves a0 g1''' + a1 g1'' + a2 g1' + a3 g1 = 0 on every solution of eq:sysfin + "
+    c_prep = certify_zero(log, "$gamma1$ solves a0 g1''' + a1 g1'' + a2 g1' + a3 g1 = 0 on every solution of eq:sysfin + "
                           "Poisson (printed a'ss)", "eq:genhipprep",
                           a0 * jets[3] + a1 * jets[2] + a2 * jets[1] + a3 * jets[0], PQ)
     result.formula("genhipprep", "eq:genhipprep, a'ss", "Third-order equation for $\\gamma_1$",
@@ -116,7 +116,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     # 2. z = d^2 w2^2 / ((d^2+1) p^2) = sech^2 t on omega(t); chain rule
     solution = special_result.exports["solution"]
     z_of_w = d**2 * w2**2 / ((d**2 + 1) * p**2)
-    c_z = certify_zero(log, "z = d^2 w2^2/((d^2+1) p^2) equals sech^2 t on omega(t)", "t->z",
+    c_z = certify_zero(log, "$z = d^2 w2^2/((d^2+1) p^2)$ equals $sech(t)^2$ on $omega(t)$", "t->z",
                        z_of_w.subs(solution, simultaneous=True) - S**2, PD_RING.domain)
     zt = [S**2]
     for _ in range(3):
@@ -125,7 +125,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     printed_zdot = [-2 * d * zz * solution[w1] / p,
                     2 * zz * (2 * p**2 + 2 * d**2 * p**2 - 3 * (1 + d**2) * p**2 * zz) / ((d**2 + 1) * p**2),
                     -8 * d * zz * (p**2 + d**2 * p**2 - 3 * (d**2 + 1) * p**2 * zz) * solution[w1] / ((d**2 + 1) * p**3)]
-    c_zdots = certify_zero(log, "printed z', z'', z''' along omega(t)", "t->z",
+    c_zdots = certify_zero(log, "printed z', z'', z''' along $omega(t)$", "t->z",
                            [zt[k + 1] - printed_zdot[k] for k in range(3)], PD_RING.domain)
     # gamma1(t) = F(z(t)): derivatives in terms of F0..F3 = F, F', F'', F'''
     g_t = [F0, zt[1] * F1_, zt[2] * F1_ + zt[1] ** 2 * F2_, zt[3] * F1_ + 3 * zt[1] * zt[2] * F2_ + zt[1] ** 3 * F3_]
@@ -137,7 +137,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         2: (-p**2 * (z - 1) + d**2 * (1 + z * (-6 - p**2 * (z - 1) + 4 * z))) / (4 * d**2 * (z - 1) ** 2 * z**2),
         3: (d**2 + 1) * p**2 / (8 * d**2 * (z - 1) ** 2 * z**2),
     }
-    c_b = certify_zero(log, "in z = sech^2 t the equation is g''' + b1 g'' + b2 g' + b3 g = 0 with the printed b1, b2, b3",
+    c_b = certify_zero(log, "in $z = sech(t)^2$ the equation is g''' + b1 g'' + b2 g' + b3 g = 0 with the printed $b1, b2, b3$",
                        "eq:gamma_1", [coeff[3 - k] / coeff[3] - b_printed[k].subs(z, S**2) for k in (1, 2, 3)],
                        PD_RING.domain)
     result.formula("gamma_1", "eq:gamma_1, t->z", "Equation in $z=4/(e^t+e^{-t})^2=\\operatorname{sech}^2t$",
@@ -154,7 +154,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     reduced = sp.expand(wu[3] + b_printed[1] * wu[2] + b_printed[2] * wu[1] + b_printed[3] * wu[0])
     e = [reduced.coeff(v) for v in us]
     m = genhip_coefficients()
-    c_genhip = certify_zero(log, "gamma1 = sqrt(z-1) u turns eq:gamma_1 into eq:genhip (ratios to the leading coefficient)",
+    c_genhip = certify_zero(log, "$gamma1 = sqrt(z-1) u$ turns eq:gamma_1 into eq:genhip (ratios to the leading coefficient)",
                             "eq:genhip", [e[k] / e[3] - m[k] / m[3] for k in range(3)], QZ)
     result.formula("genhip", "eq:genhip", "Equation for $u=\\gamma_1/\\sqrt{z-1}$",
                    r"z^2(1-z)u'''+\tfrac12(4-9z)zu''+\Big[\tfrac14\Big(1+\frac{p^2}{d^2}\Big)+\tfrac14(p^2-13)z\Big]u'"
@@ -168,16 +168,16 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                    r"\alpha=\Big(\tfrac12,\tfrac{1+p}{2},\tfrac{1-p}{2}\Big),\quad\beta=\Big(\frac{d-ip}{2d},\frac{d+ip}{2d}\Big)",
                    c_param)
     for item in (paper.GAMMA_1, paper.GENHIP, paper.PARAM):
-        result.errata.append(erratum(item, "confirmed", item.latex, "certified exactly (symbolic p, d)",
+        result.errata.append(erratum(item, "confirmed", item.latex, "certified exactly (symbolic $p$, d)",
                                      {"eq:gamma_1": c_b, "eq:genhip": c_genhip, "eq:param": c_param}[item.label]))
 
     # Pochhammer: the series solves eq:3F2 only with (a)_k = a...(a+k-1) (checked at p = 3)
     good = series_3f2(*PARAM, 3)
     bad = series_3f2(*PARAM, 3, printed=True)
     m3 = [v.subs(p, 3) for v in m]
-    c_poch = certify_zero(log, "p = 3: 3F2 series with (a)_k = a(a+1)...(a+k-1) solves eq:genhip", "eq:ghyp",
+    c_poch = certify_zero(log, "$p = 3$: 3F2 series with (a)_k = a(a+1)...(a+k-1) solves eq:genhip", "eq:ghyp",
                           apply_z_operator(m3, good), QZ)
-    c_poch_bad = certify_zero(log, "p = 3: 3F2 series with the printed (a)_k = a(a+1)...(a+k) solves eq:genhip",
+    c_poch_bad = certify_zero(log, "$p = 3$: 3F2 series with the printed (a)_k = a(a+1)...(a+k) solves eq:genhip",
                               "eq:ghyp", apply_z_operator(m3, bad), QZ, expect=Outcome.FAIL)
     result.errata.append(erratum(paper.POCHHAMMER, "corrected", r"(a)_k=a(a+1)\cdots(a+k-1),\ (a)_0=1",
                                  "the printed definition has one factor too many", c_poch, c_poch_bad))

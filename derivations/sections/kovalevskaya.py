@@ -97,7 +97,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     field = full_field(euler, model_result.exports["poisson"])
 
     point = darboux_point(euler)
-    c_point = certify_zero(log, "Darboux point: v(d) = -d with m3 = i r, r^2 = I11 I22, gamma = 0 (r -> -r: the "
+    c_point = certify_zero(log, "Darboux point: $v(d) = -d$ with $m3 = i r$, $r^2 = I11 I22$, $gamma = 0$ ($r$ replaced by $-r$: the "
                            "conjugate point)", "eq:d", [field[x].xreplace(point) + point[x]
                                                         for x in STATE], DOMAIN)
     printed_point = {w1: 1 / (I11 * I23 + sp.I * I13 * r), w2: -1 / (I13 * I22 - sp.I * I23 * r),
@@ -109,7 +109,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     c_point_true = certify_zero(log, "printed eq:d is a Darboux point of the derived equations", "eq:d",
                                 [field[x].xreplace(printed_point) + printed_point[x]
                                  for x in STATE], DOMAIN, expect=Outcome.FAIL)
-    c_point_scale = certify_zero(log, "derived Darboux point = -(I11 I22) x printed eq:d", "eq:d",
+    c_point_scale = certify_zero(log, "derived Darboux point equals $-I11 I22$ times the printed eq:d", "eq:d",
                                  [point[x] + I11 * I22 * printed_point[x] for x in (w1, w2)], DOMAIN)
     result.formula("darboux", "eq:d", "Darboux point ($m_3=I_{13}\\bar\\omega_1+I_{23}\\bar\\omega_2=ir$, "
                    "$r=\\sqrt{I_{11}I_{22}}$)",
@@ -126,10 +126,10 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     with stopwatch() as elapsed:
         charpoly = sp.expand((K - lam * sp.eye(5)).det(method="berkowitz"))
     target = -(lam + 1) * (lam - 2) * (lam - 1) * ((lam - 1) ** 2 - Lam2)
-    c_char = certify_zero(log, "det(K - lambda) = -(lambda+1)(lambda-2)(lambda-1)((lambda-1)^2 - Lambda^2): exponents "
-                          "-1, 2, 1, 1 +- Lambda", "Kovalevskaya matrix", charpoly - target, DOMAIN)
+    c_char = certify_zero(log, "$det(K - lam) = -(lam+1)(lam-2)(lam-1)((lam-1)^2 - Lambda^2)$: exponents "
+                          "$-1$, $2$, $1$, 1 +- Lambda", "Kovalevskaya matrix", charpoly - target, DOMAIN)
     c_char.seconds += elapsed[0]
-    c_lam = certify_zero(log, "Lambda^2 = -(w1^2 + w2^2) at the Darboux point (closed form)", "Kovalevskaya matrix",
+    c_lam = certify_zero(log, "$Lambda^2 = -(w1^2 + w2^2)$ at the Darboux point (closed form)", "Kovalevskaya matrix",
                          -(point[w1] ** 2 + point[w2] ** 2) - Lam2, DOMAIN)
     result.formula("exponents", "section 3.1", "Kovalevskaya exponents",
                    r"-1,\ 1,\ 2,\ 1\pm\Lambda,\quad\Lambda^2=\frac{I_{11}I_{22}(I_{11}-I_{22})(I_{11}I_{23}^2-I_{22}I_{13}^2)}"
@@ -137,38 +137,38 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                    c_char, c_lam)
 
     # necessary conditions
-    c_g1 = certify_zero(log, "Im Lambda^2 = 0 iff I13 I23 (I11 - I22) = 0 (imaginary part is -2 r I11 I22 I13 I23 "
-                        "(I11-I22)/D^2)", "eq:neccg1", imag + 2 * r * I11 * I22 * I13 * I23 * (I11 - I22) / D**2, DOMAIN)
+    c_g1 = certify_zero(log, "$Im(Lambda^2) = 0$ iff $I13 I23 (I11 - I22) = 0$ (imaginary part is $-2 r I11 I22 I13 I23 "
+                        "(I11-I22)/D^2$)", "eq:neccg1", imag + 2 * r * I11 * I22 * I13 * I23 * (I11 - I22) / D**2, DOMAIN)
     det_one_D = I11 * I22 * paper_I33() - 1
     printed_g12 = (I11 - I22) * (I11 * I23**2 - I22 * I13**2) / (I11 * I22 * det_one_D**2)
-    c_g12 = certify_zero(log, "printed eq:neccg12 (det I = 1) equals Re Lambda^2", "eq:neccg12",
+    c_g12 = certify_zero(log, "printed eq:neccg12 ($det(I) = 1$) equals $Re(Lambda^2)$", "eq:neccg12",
                          printed_g12 - real, PLAIN, expect=Outcome.FAIL)
-    c_g12_scale = certify_zero(log, "Re Lambda^2 = (I11 I22)^2 x printed eq:neccg12 left-hand side (det I = 1)",
+    c_g12_scale = certify_zero(log, "$Re(Lambda^2) = (I11 I22)^2$ times the printed eq:neccg12 left-hand side ($det(I) = 1$)",
                                "eq:neccg12", real - (I11 * I22) ** 2 * printed_g12, PLAIN)
-    c_n1 = certify_zero(log, "I13 = 0: Lambda^2 = I22 (I11 - I22)/I23^2", "eq:necc1",
+    c_n1 = certify_zero(log, "$I13 = 0$: $Lambda^2 = I22 (I11 - I22)/I23^2$", "eq:necc1",
                         Lam2.subs(I13, 0) - I22 * (I11 - I22) / I23**2, DOMAIN)
-    c_n11 = certify_zero(log, "I23 = 0: Lambda^2 = -I11 (I11 - I22)/I13^2", "eq:necc11",
+    c_n11 = certify_zero(log, "$I23 = 0$: $Lambda^2 = -I11 (I11 - I22)/I13^2$", "eq:necc11",
                          Lam2.subs(I23, 0) + I11 * (I11 - I22) / I13**2, DOMAIN)
     printed_n11 = (I11 - I22) / (I11 * I22 * (I11 * I22 * paper_I33().subs(I23, 0) - 1))  # printed: = -p^2
     derived_n11 = -Lam2.subs(I23, 0)  # derived: = -p^2
-    c_n11_pr = certify_zero(log, "printed eq:necc11 left-hand side (det I = 1) equals -Lambda^2 for I23 = 0",
+    c_n11_pr = certify_zero(log, "printed eq:necc11 left-hand side ($det(I) = 1$) equals $-Lambda^2$ for $I23 = 0$",
                             "eq:necc11", printed_n11 - derived_n11, DOMAIN, expect=Outcome.FAIL)
-    c_n11_scale = certify_zero(log, "-Lambda^2 (I23 = 0) = (I11 I22)^2 x printed eq:necc11 left-hand side",
+    c_n11_scale = certify_zero(log, "$-Lambda^2$ ($I23 = 0$) equals $(I11 I22)^2$ times the printed eq:necc11 left-hand side",
                                "eq:necc11", derived_n11 - (I11 * I22) ** 2 * printed_n11, DOMAIN)
     result.formula("necessary", "eq:neccg1, eq:neccg12, eq:necc1, eq:necc11", "Necessary conditions",
                    r"I_{13}I_{23}(I_{11}-I_{22})=0,\quad \Lambda^2=p^2:\quad I_{13}=0:\ \frac{I_{22}(I_{11}-I_{22})}{I_{23}^2}=p^2,"
                    r"\quad I_{23}=0:\ \frac{I_{11}(I_{11}-I_{22})}{I_{13}^2}=-p^2", c_g1, c_n1, c_n11)
-    result.errata.append(erratum(paper.NECCG1, "confirmed", paper.NECCG1.latex, "imaginary part of Lambda^2", c_g1))
+    result.errata.append(erratum(paper.NECCG1, "confirmed", paper.NECCG1.latex, "imaginary part of $Lambda^2$", c_g1))
     result.errata.append(erratum(
         paper.NECCG12, "corrected",
         r"\frac{I_{11}I_{22}(I_{11}-I_{22})(I_{11}I_{23}^2-I_{22}I_{13}^2)}{(I_{11}I_{22}I_{33}-1)^2}=p^2",
-        "factor (I11 I22)^2 (the printed gen12 time scale); for I13 = 0 this agrees with the parameter "
+        "factor $(I11 I22)^2$ (the printed gen12 time scale); for $I13 = 0$ this agrees with the parameter "
         "derived from the general solution (special_case), so eq:necc1 is corrected the same way",
         c_g12, c_g12_scale, c_n1))
     result.errata.append(erratum(
         paper.NECC11, "corrected", r"I_{23}=0,\ \frac{I_{11}(I_{11}-I_{22})}{I_{13}^2}=-p^2"
         r"\ \Big(=-\frac{I_{11}I_{22}(I_{11}-I_{22})}{I_{11}I_{22}I_{33}-1},\ \det\mathbb I=1\Big)",
-        "same factor (I11 I22)^2 as eq:necc1", c_n11_pr, c_n11_scale, c_n11))
+        "same factor $(I11 I22)^2$ as eq:necc1", c_n11_pr, c_n11_scale, c_n11))
 
     # I11 = I22: non-semisimple
     same = {I22: I11, r: I11}
@@ -186,7 +186,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
         lam_same = sp.expand(Lam2.xreplace(same))
     outcome = Outcome.PASS if witness is not None and lam_same == 0 else Outcome.FAIL
     c_ss = log.record(Certificate(
-        "I11 = I22: Lambda = 0, eigenvalue 1 has multiplicity 3 and rank(K - Id) >= 3: K is not semi-simple",
+        "$I11 = I22$: $Lambda = 0$, eigenvalue 1 has multiplicity 3 and $rank(K - Id) >= 3$: $K$ is not semi-simple",
         "section 3.1", "non-zero 3x3 minor in Q(I11,I13,I23)[i] (exact)", outcome, elapsed[0], 1,
         f"minor rows {witness[0]} cols {witness[1]} is non-zero" if witness else "no non-zero minor found"))
     result.formula("semisimple", "section 3.1", "The case $I_{11}=I_{22}$",
@@ -198,17 +198,17 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     swapped = {x: swap(field[x]) for x in STATE}
     pushed = jac * sp.Matrix([field[x] for x in STATE])
     target_field = sp.Matrix([swapped[x].xreplace(image) for x in STATE])
-    c_lina = certify_zero(log, "eq:lina maps the derived system with (I11,I22,I13,I23) to the one with "
-                          "(I22,I11,I23,I13)", "eq:lina", list(pushed - target_field), PLAIN)
-    c_lina_p = certify_zero(log, "eq:lina maps Lambda^2 of the case I23 = 0 to Lambda^2 of the case I13 = 0",
+    c_lina = certify_zero(log, "eq:lina maps the derived system with $(I11,I22,I13,I23)$ to the one with "
+                          "$(I22,I11,I23,I13)$", "eq:lina", list(pushed - target_field), PLAIN)
+    c_lina_p = certify_zero(log, "eq:lina maps $Lambda^2$ of the case $I23 = 0$ to $Lambda^2$ of the case $I13 = 0$",
                             "eq:lina", swap(Lam2.subs(I23, 0)) - Lam2.subs(I13, 0), DOMAIN)
     result.errata.append(erratum(paper.LINA, "confirmed", paper.LINA.latex,
-                                 "exact identity of vector fields; p^2 changes sign as eq:necc1 / eq:necc11 say",
+                                 "exact identity of vector fields; $p^2$ changes sign as eq:necc1 / eq:necc11 say",
                                  c_lina, c_lina_p))
     # the two cases of Theorem 3.1 as emitted by meromorphy(): Lambda^2 restricted (real there)
     restricted = {name: flint_factor.factor(sp.cancel(real.subs(zero, 0))) for name, zero in (("i13", I13), ("i23", I23))}
-    c_real_cases = certify_zero(log, "Lambda^2 is real on I13 = 0 and on I23 = 0 (its imaginary part vanishes "
-                                "identically there), so p^2 = Re Lambda^2 restricted", "eq:neccg1",
+    c_real_cases = certify_zero(log, "$Lambda^2$ is real on $I13 = 0$ and on $I23 = 0$ (its imaginary part vanishes "
+                                "identically there), so $p^2 = Re(Lambda^2)$ restricted", "eq:neccg1",
                                 [imag.subs(I13, 0), imag.subs(I23, 0)], DOMAIN)
     emit = [Emitted("lambda_squared", (I11, I22, I13, I23), ((r, sp.sqrt(I11 * I22)),), (real, imag),
                     (c_char.key, c_lam.key), "(Re, Im) of Lambda^2 at the Darboux point with m3 = i sqrt(I11 I22)."),

@@ -59,6 +59,7 @@ from derivations.core.certificates import (
     stopwatch,
 )
 from derivations.core.exact import Domain, certify_zero
+from derivations.core.statement import Statement, ring
 from derivations.core.result import DerivationResult
 from derivations.sections.meromorphic_printed import (
     coefficient_tables,
@@ -122,9 +123,9 @@ def conservation_certificate(log: CertificateLog) -> Certificate:
     dd = sp.Symbol("d", positive=True)
     A = sp.Matrix([[0, 0, a * S], [0, 0, w1], [-a * (dd**2 + 1) * S, -w1, 0]])
     G = sp.diag(dd**2 + 1, 1, 1)
-    return certify_zero(log, "the c-free Poisson matrix A(t) (g1' = a S g3, g2' = w1 g3, g3' = -a(d^2+1) S g1 - w1 g2) "
-                        "is real and skew for M = diag(d^2+1, 1, 1): A^T M + M A = 0, so M-products of two "
-                        "solutions are constant in t", "eq:ps", list(A.T * G + G * A), Domain("Q(a,d,S,w1)"))
+    return certify_zero(log, "the c-free Poisson matrix $A(t)$ ($deriv(g1, t) = a S g3$, $deriv(g2, t) = w1 g3$, $deriv(g3, t) = -a (d^2+1) S g1 - w1 g2$) "
+                        "is real and skew for $M = diag(d^2+1, 1, 1)$: $A^T M + M A = 0$, so M-products of two "
+                        "solutions are constant in $t$", "eq:ps", list(A.T * G + G * A), Domain("Q(a,d,S,w1)"))
 
 
 def construct(p: int) -> tuple[Solution, Solution]:
@@ -147,21 +148,21 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
         real, cplx = construct(p)
         ok_div = real.divisions_exact and cplx.divisions_exact
     certs.append(log.record(Certificate(
-        f"p = {p}: the components from eq:gam3 are polynomials over (1+x^2)^p: exact division by x and x^2-1 "
-        "(no removable singularity at t = 0)", "eq:gam3", f"exact division in {DOMAIN}",
+        f"$p = {p}$: the components from eq:gam3 are polynomials over $(1+x^2)^p$: exact division by $x$ and $x^2-1$ "
+        "(no removable singularity at t = 0)", "eq:gam3", Statement("exact division in ", ring(DOMAIN)),
         Outcome.PASS if ok_div else Outcome.FAIL, elapsed[0], sum(len(m) for m in real.M + cplx.M))))
     with stopwatch() as elapsed:
         third = third_order_residual(cplx.M[0], p, 1)
     certs.append(log.record(Certificate(
-        f"p = {p}: g1 = e^(i(p/d)t) x P+(x^2)/(1+x^2)^p = sqrt(z-1) F2(z) (F_23_pol) solves eq:genhipprep; with the "
-        "certified reduction to eq:genhip, F2 and its conjugate F3 solve eq:genhip", "F_23_pol",
-        f"exact zero test in {DOMAIN}", Outcome.PASS if third.is_zero() else Outcome.FAIL, elapsed[0], len(third))))
+        f"$p = {p}$: $g1 = e^(i (p/d) t) x P_p(x^2)/(1+x^2)^p = sqrt(z-1) F2(z)$ (F_23_pol) solves eq:genhipprep; with the "
+        "certified reduction to eq:genhip, $F2$ and its conjugate $F3$ solve eq:genhip", "F_23_pol",
+        Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if third.is_zero() else Outcome.FAIL, elapsed[0], len(third))))
     with stopwatch() as elapsed:
         residuals = poisson_residuals(real) + poisson_residuals(cplx)
         ok = all(r.is_zero() for r in residuals)
     certs.append(c_poisson := log.record(Certificate(
-        f"p = {p}: gamma^(1) and the complex solution e^(i(p/d)t) V solve the Poisson equations eq:ps with omega "
-        "from omegas", "eq:ps", f"exact zero test in {DOMAIN}", Outcome.PASS if ok else Outcome.FAIL, elapsed[0],
+        f"$p = {p}$: $gammaI$ and the complex solution $e^(i(p/d)t) V$ solve the Poisson equations eq:ps with $omega$ "
+        "from omegas", "eq:ps", Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL, elapsed[0],
         sum(len(r) for r in residuals), "6 numerator identities")))
 
     with stopwatch() as elapsed:
@@ -190,12 +191,12 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
                   and (metric_dot(real0, real0) - (D**2 + 1) * scale_real**2).is_zero()
                   and (metric_dot(V0, Vbar0) - unit_target).is_zero())
             size = 2
-    method = (f"exact zero test in {DOMAIN}" if direct else
+    method = (Statement("exact zero test in ", ring(DOMAIN)) if direct else
               "conservation: the certified Poisson solutions (this p) have constant G-products (G-skew system, "
-              "certified once); rate-0 constants from exact values at x = 0, products carrying e^(ikat), k != 0, "
-              "are zero (a non-zero constant would make e^(ikat) converge as t -> -oo)")
+              "certified once); rate-0 constants from exact values at $x = 0$, products carrying $e^(i k a t)$ with $k$ "
+              "non-zero are zero (a non-zero constant would make $e^(i k a t)$ converge as $t$ tends to $-oo$)")
     certs.append(log.record(Certificate(
-        f"p = {p}: |gamma^(1)| = 1, V.V = 0, |V|^2 = 2|k|^2, gamma^(1).V = 0: gamma^(1), Re, Im of V/k orthonormal",
+        f"$p = {p}$: $abs(gammaI) = 1$, $inner(V, V) = 0$, $abs(V)^2 = 2 abs(k)^2$, $inner(gammaI, V) = 0$: $gammaI$, Re and Im of $V/k$ orthonormal",
         "gam1, gam2, gam3", method, Outcome.PASS if ok else Outcome.FAIL, elapsed[0], size, "4 identities")))
 
     with stopwatch() as elapsed:
@@ -208,8 +209,8 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
               and lim_minus[2].is_zero() and (lim_plus[0] - scale_real).is_zero() and lim_plus[1].is_zero()
               and lim_plus[2].is_zero() and at_x(cplx.M[0], 0).is_zero())
     certs.append(log.record(Certificate(
-        f"p = {p}: gamma^(1) -> (-1,0,0) as t -> -oo and (+1,0,0) as t -> +oo; V/k -> (0, 1, {'+' if sigma > 0 else '-'}i) "
-        "as t -> -oo (asymp)", "asymp", f"exact evaluation in {DOMAIN}", Outcome.PASS if ok else Outcome.FAIL,
+        f"$p = {p}$: $gammaI$ tends to $(-1,0,0)$ as $t$ tends to $-oo$ and to $(1,0,0)$ as $t$ tends to $oo$; $V/k$ tends to "
+        f"$(0, 1, {'' if sigma > 0 else '-'}i)$ as $t$ tends to $-oo$ (asymp)", "asymp", Statement("exact evaluation in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL,
         elapsed[0], 0)))
     return Basis(p, real, cplx, k, scale_real, sigma, certs)
 
@@ -239,8 +240,8 @@ def genhip_check(log: CertificateLog, p: int) -> Certificate:
         lhs = (8 * ZD**2 * ZV**2 * (1 - ZV) * d3 + 4 * ZD**2 * (4 - 9 * ZV) * ZV * d2
                + (2 * (ZD**2 + p * p) + 2 * ZD**2 * (p * p - 13) * ZV) * d1 + ZD**2 * (p * p - 1) * u)
     return log.record(Certificate(
-        f"p = {p}: the terminating series F1(z) (pol_sol, derived coefficients) solves eq:genhip",
-        "pol_sol", "exact zero test in Z[z,d] (python-flint, times 8 d^2 Den)",
+        f"$p = {p}$: the terminating series $F1(z)$ (pol_sol, derived coefficients) solves eq:genhip",
+        "pol_sol", "exact zero test in $Z[z,d]$ (python-flint, times $8 d^2 Den$)",
         Outcome.PASS if lhs.is_zero() else Outcome.FAIL, elapsed[0], len(u)))
 
 

@@ -30,6 +30,7 @@ from derivations.core.flint_factor import (
     generator_order,
 )
 from derivations.core.result import DerivationResult
+from derivations.core.statement import Statement, ring
 from derivations.core.typeset import latex
 from derivations.sections.meromorphic_ring import (
     CTX,
@@ -73,7 +74,7 @@ def printed_comparisons(log: CertificateLog, result: DerivationResult, proof: Ce
     derived = to_sympy(gamma1_numerator(p))
     Den1 = sp.Mul(*[(2 * m + 1) ** 2 * ds**2 + p * p for m in range((p - 1) // 2)])
     from derivations.core.exact import Domain, certify_zero
-    c_gam1 = certify_zero(log, "p = 3: printed gam1 equals tanh t F1(sech^2 t) (derived)", "gam1",
+    c_gam1 = certify_zero(log, "$p = 3$: printed gam1 equals $tanh(t) F1(sech(t)^2)$ (derived)", "gam1",
                           printed_gam1_numerator(p) - derived / Den1, Domain("Q(d)[x]"), expect=Outcome.FAIL)
     F, Fhat = hypergeometric_polynomials(p)
     V1 = red(X * in_y_squared(red(F * Fhat)))
@@ -81,20 +82,20 @@ def printed_comparisons(log: CertificateLog, result: DerivationResult, proof: Ce
         good = third_order_residual(V1, p, 1).is_zero()
         bad = third_order_residual(V1, p, -1).is_zero()
     c_pair = log.record(Certificate(
-        "p = 3: e^{+i(p/d)t} x P+(x^2)/(1+x^2)^p (parameters with +ip) solves eq:genhipprep", "gam2",
-        f"exact zero test in {DOMAIN}", Outcome.PASS if good else Outcome.FAIL, elapsed[0], len(V1)))
+        "$p = 3$: $e^(i (p/d) t) x P_p(x^2)/(1+x^2)^p$ (parameters with $+i p$) solves eq:genhipprep", "gam2",
+        Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if good else Outcome.FAIL, elapsed[0], len(V1)))
     c_pair_bad = log.record(Certificate(
-        "p = 3: the printed gam2 pairing e^{-i(p/d)t} with the +ip parameters solves eq:genhipprep", "gam2",
-        f"exact zero test in {DOMAIN}", Outcome.FAIL if not bad else Outcome.PASS, 0.0, len(V1),
+        "$p = 3$: the printed gam2 pairing $e^(-i (p/d) t)$ with the $+i p$ parameters solves eq:genhipprep", "gam2",
+        Statement("exact zero test in ", ring(DOMAIN)), Outcome.FAIL if not bad else Outcome.PASS, 0.0, len(V1),
         expected=Outcome.FAIL))
     result.errata.append(erratum(
         paper.GAM1, "corrected", r"\gamma_1^{(1)}=\tanh t\,\mathcal F_1(\operatorname{sech}^2t),\ a_k=4^kc_k",
-        "inherits the pol_sol misprints (sign (-1)^k, denominators (2m+1)^2 d^2 + p^2)", c_gam1, proof))
+        "inherits the pol_sol misprints (sign $(-1)^k$, denominators $(2 m+1)^2 d^2 + p^2$)", c_gam1, proof))
     result.errata.append(erratum(
         paper.GAM2, "corrected", r"\gamma_1^{(2)}=\frac{e^{(1+\frac{ip}{d})t}}{(1+e^{2t})^p}\sum_k b_ke^{2kt}"
         r"\ (b_k\text{ from }a=\tfrac{2-p}2+\tfrac{ip}{2d},\ c=\tfrac32+\tfrac{ip}{2d})",
-        "the exponent's sign is wrong: the +ip parameters go with e^{+i(p/d)t} (as in F_23_pol, "
-        "y^{(d+ip)/(2d)}); gam3 is the complex conjugate", c_pair, c_pair_bad))
+        "the exponent's sign is wrong: the $+i p$ parameters go with $e^(i (p/d) t)$ (as in F_23_pol, "
+        "$y^((d+i p)/(2 d))$); gam3 is the complex conjugate", c_pair, c_pair_bad))
 
 
 def basis_mp(basis: Basis, t, d):
@@ -260,14 +261,14 @@ def compare_poly_f2(log: CertificateLog, result: DerivationResult, options) -> N
             corrected.append(f_k * (-p) * (ds - sp.I) * ((2 * k + 1) * ds + sp.I * p) / ((p - 2 * k) * ds - sp.I * p))
             printed.append(f_k * (2 * ds * k + ds + p * sp.I) * (4 * ds * k - ds * p + sp.I * p)
                            / (ds * p - 2 * ds * k - sp.I * p))
-        good.append(certify_zero(log, f"p = {p}: Fhat_k = -p (d-i)((2k+1)d+ip)/((p-2k)d-ip) F_k (from the definition "
+        good.append(certify_zero(log, f"$p = {p}$: $Fhat_k = -p (d-i)((2k+1)d+i p)/((p-2k)d-i p) F_k$ (from the definition "
                                  "of Fhat)", "poly_F2", [u - v for u, v in zip(derived, corrected)], Domain("Q(d)(i)")))
-        bad.append(certify_zero(log, f"p = {p}: the printed poly_F2 coefficients equal Fhat_k", "poly_F2",
+        bad.append(certify_zero(log, f"$p = {p}$: the printed poly_F2 coefficients equal $Fhat_k$", "poly_F2",
                                 [u - v for u, v in zip(derived, printed)], Domain("Q(d)(i)"), expect=Outcome.FAIL))
     if good:
         result.errata.append(erratum(
             paper.POLY_F2, "corrected",
             r"\hat F=\sum_k\frac{(a_+)_k(b_+)_k}{(c_+)_kk!}\,\frac{-p(d-i)((2k+1)d+ip)}{(p-2k)d-ip}\,(-y)^k"
             r"\ (\text{conjugate for }a_-,c_-)",
-            "the factor (4dk - dp + ip) should be -p(d - i) (they agree only at k = 0); derived from "
+            "the factor $(4 d k - d p + i p)$ should be $-p(d - i)$ (they agree only at k = 0); derived from "
             "Fhat = [d(p-1)y - d - ip]F - 2d y(y+1)F'", *good, *bad))

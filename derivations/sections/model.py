@@ -116,7 +116,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
     inertia = inertia_tensor()
 
     # 1. normalisation det I = 1
-    c_det = certify_zero(log, "det I = 1 fixes I33 = (1 + I11 I23^2 + I22 I13^2)/(I11 I22)", "section 2",
+    c_det = certify_zero(log, "det I = 1 fixes $I33 = (1 + I11 I23^2 + I22 I13^2)/(I11 I22)$", "section 2",
                          inertia_tensor(I33_FROM_DET).det() - 1, RATIONAL)
     result.formula("i33", "section 2", "Normalisation $\\det\\mathbb I=1$",
                    sp.Eq(I33, I33_FROM_DET), c_det)
@@ -124,31 +124,31 @@ def run(log: CertificateLog, options) -> DerivationResult:
     # 2. reduced Euler equations, solved from 3.25
     field, multiplier = derive_euler_field()
     inertia_dot = inertia * sp.Matrix([field[w1], field[w2], 0])
-    c_euler = certify_zero(log, "derived omega', lambda satisfy d/dt(I omega) = I omega x omega + lambda a",
+    c_euler = certify_zero(log, "derived $deriv(omega, t)$, $lam$ satisfy $deriv(I omega, t) = cross(I omega, omega) + lam a$",
                            "3.25", inertia_dot - (inertia * omega).cross(omega) - multiplier * E3, RATIONAL)
     inverse_a = inertia.inv() * E3
     printed_lambda = -((inertia * omega).cross(omega)).dot(inverse_a) / E3.dot(inverse_a)
-    c_lambda = certify_zero(log, "printed Lagrange multiplier lambda = -<I w x w, I^-1 a>/<a, I^-1 a>",
+    c_lambda = certify_zero(log, "printed Lagrange multiplier $lam = -inner(cross(I w, w), Iinv a)/inner(a, Iinv a)$",
                             "3.25 (text)", multiplier - printed_lambda, RATIONAL)
     m3 = (inertia * omega).dot(E3)
     printed_ep = m3 * omega.cross(inverse_a)
-    c_ep_printed = certify_zero(log, "printed ep3.26 <I w,a> w x I^-1 a gives d/dt(I w) (first two rows)",
+    c_ep_printed = certify_zero(log, "printed ep3.26 $inner(I w, a) cross(w, Iinv a)$ gives $deriv(I w, t)$ (first two rows)",
                                 paper.EP326.label, list((inertia_dot - printed_ep)[:2]), RATIONAL,
                                 expect=Outcome.FAIL)
     corrected_ep = m3 / E3.dot(inverse_a) * inverse_a.cross(omega)
-    c_ep_corrected = certify_zero(log, "corrected ep3.26 <I w,a>/<a,I^-1 a> I^-1 a x w gives d/dt(I w)",
+    c_ep_corrected = certify_zero(log, "corrected ep3.26 $inner(I w, a)/inner(a, Iinv a) cross(Iinv a, w)$ gives $deriv(I w, t)$",
                                   paper.EP326.label, list((inertia_dot - corrected_ep)[:2]), RATIONAL)
     result.errata.append(erratum(
         paper.EP326, "corrected",
         r"\frac{d}{dt}(\mathbb I\omega)=\frac{\langle\mathbb I\omega,a\rangle}{\langle a,\mathbb I^{-1}a\rangle}"
         r"\,\mathbb I^{-1}a\times\omega",
-        "the printed form drops 1/<a, I^-1 a> and reverses the cross product; it equals the true "
-        "right-hand side times -<a, I^-1 a> = -I11 I22 (det I = 1)",
+        "the printed form drops $1/inner(a, Iinv a)$ and reverses the cross product; it equals the true "
+        "right-hand side times $-inner(a, Iinv a) = -I11 I22$ ($det(I) = 1$)",
         c_ep_printed, c_ep_corrected))
 
     c_gen12 = certify_zero(log, "printed gen12 equals the derived reduced Euler equations", paper.GEN12.label,
                            [paper.GEN12_FIELD[x] - field[x] for x in (w1, w2)], RATIONAL, expect=Outcome.FAIL)
-    c_gen12_scale = certify_zero(log, "printed gen12 = -(I11 I22) x derived field (time tau = -I11 I22 t)",
+    c_gen12_scale = certify_zero(log, "printed gen12 equals $-I11 I22$ times the derived field (time $tau = -I11 I22 t$)",
                                  paper.GEN12.label,
                                  [paper.GEN12_FIELD[x] + I11 * I22 * field[x] for x in (w1, w2)], RATIONAL)
     entries = sorted({str(s) for v in field.values() for s in v.free_symbols} - {"omega1", "omega2"})
@@ -158,37 +158,37 @@ def run(log: CertificateLog, options) -> DerivationResult:
     result.formula("lambda", "3.25", "Lagrange multiplier", sp.Eq(lam, multiplier), c_euler, c_lambda)
     result.notes.append(
         "Entries of the inertia tensor that appear in the reduced Euler equations: "
-        + ", ".join(entries) + " (entries of I itself, not of its inverse; I33 does not appear, "
+        + ", ".join(entries) + " (entries of $I$ itself, not of its inverse; $I33$ does not appear, "
         "it only enters through det I = 1).")
     result.errata.append(erratum(
         paper.GEN12, "corrected",
         r"\dot\omega_1=" + latex(field[w1]) + r",\ \dot\omega_2=" + latex(field[w2]),
-        "printed right-hand sides are the derived ones times -I11 I22, i.e. the printed system runs in "
-        "the time tau = -I11 I22 t (consistent with the printed ep3.26)",
+        "printed right-hand sides are the derived ones times $-I11 I22$, i.e. the printed system runs in "
+        "the time $tau = -I11 I22 t$ (consistent with the printed ep3.26)",
         c_gen12, c_gen12_scale))
 
     # 3. Poisson equations
     poisson = derive_poisson_field()
-    c_poisson = certify_zero(log, "gamma' = -hat(omega) gamma (space-fixed gamma) is eq:whole",
+    c_poisson = certify_zero(log, "$deriv(gamma, t) = cross(gamma, omega)$ (space-fixed $gamma$) is eq:whole",
                              paper.WHOLE.label, [poisson[x] - paper.WHOLE_FIELD[x] for x in (g1, g2, g3)],
                              RATIONAL)
     result.formula("poisson", "eq:whole", "Poisson equations",
                    r",\ ".join(r"\dot\gamma_%d=%s" % (i + 1, latex(poisson[x]))
                                for i, x in enumerate((g1, g2, g3))), c_poisson)
     result.errata.append(erratum(paper.WHOLE, "confirmed", paper.WHOLE.latex,
-                                 "derived from R' = R hat(omega), gamma = R^T e", c_poisson))
+                                 "derived from R' = R hat(omega), $gamma = R^T e$", c_poisson))
 
     # 4. general solution by the (u, v) reduction
     u = I13 * w1 + I23 * w2
     v = I23 * w1 / I22 - I13 * w2 / I11
-    c_uv = certify_zero(log, "u = I13 w1 + I23 w2, v = I23 w1/I22 - I13 w2/I11 obey u' = u v, v' = -u^2/(I11 I22)",
+    c_uv = certify_zero(log, "$u = I13 w1 + I23 w2$, $v = I23 w1/I22 - I13 w2/I11$ obey $deriv(u, t) = u v$, $deriv(v, t) = -u^2/(I11 I22)$",
                         "derived", [lie_derivative(u, field) - u * v,
                                     lie_derivative(v, field) + u**2 / (I11 * I22)], RATIONAL)
-    c_uv_sol = certify_zero(log, "u = r sech t, v = -tanh t (r^2 = I11 I22) solve the (u, v) system",
+    c_uv_sol = certify_zero(log, "$u = r sech t$, $v = -tanh t$ ($r^2 = I11 I22$) solve the $(u, v)$ system",
                             "derived", [RING.d_dt(r * S) - (r * S) * (-T),
                                         RING.d_dt(-T) + (r * S) ** 2 / (I11 * I22)], RING.domain)
     solution = derive_general_solution()
-    c_sol = certify_zero(log, "derived omega(t) solves the reduced Euler equations, both signs of r",
+    c_sol = certify_zero(log, "derived $omega(t)$ solves the reduced Euler equations, both signs of $r$",
                          "eq:o12", ode_residuals(RING, solution, field), RING.domain)
     # second exact route (was an mpmath.diff spot check): x = e^t makes omega rational, d/dt = x d/dx
     numeric_certs = [certify_ode_in_exp(
@@ -199,7 +199,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
     D = I13**2 * I22 + I23**2 * I11
     coeff = {name: flint_factor.factor(sp.Poly(solution[x], T, S).coeff_monomial(m))
              for name, x, m in (("a", w1, T), ("c1/2", w1, S), ("b", w2, T), ("c2/2", w2, S))}
-    c_line = certify_zero(log, "omega(t) tends to the equilibrium line I13 w1 + I23 w2 = 0 as t -> +-oo",
+    c_line = certify_zero(log, "$omega(t)$ tends to the equilibrium line $I13 w1 + I23 w2 = 0$ as t -> +-oo",
                           "eq:o12", [(I13 * solution[w1] + I23 * solution[w2]).subs({S: 0, T: s}) for s in (1, -1)],
                           WITH_R)
     result.formula("o12", "eq:o12, c's", "General solution (rate $A=1$), $r=\\pm\\sqrt{I_{11}I_{22}}$",
@@ -211,13 +211,13 @@ def run(log: CertificateLog, options) -> DerivationResult:
     printed = paper.printed_o12(1, 1)
     c_pr_pr = certify_zero(log, "printed eq:o12/c's (signs coupled) solve the printed gen12", "c's",
                            ode_residuals(RING, printed, paper.GEN12_FIELD), RING.domain)
-    c_pr_mixed = certify_zero(log, "printed eq:o12/c's with opposite signs in c1, c2 solve the printed gen12",
+    c_pr_mixed = certify_zero(log, "printed eq:o12/c's with opposite signs in $c1, c2$ solve the printed gen12",
                               "c's", ode_residuals(RING, paper.printed_o12(1, -1), paper.GEN12_FIELD),
                               RING.domain, expect=Outcome.FAIL)
     c_pr_true = certify_zero(log, "printed eq:o12/c's solve the derived Euler equations", "c's",
                              ode_residuals(RING, printed, field), RING.domain, expect=Outcome.FAIL)
     printed_other = paper.printed_o12(-1, -1)
-    c_scale = certify_zero(log, "derived omega(t) with r = -(I11 I22) x printed omega(t) with -r", "c's",
+    c_scale = certify_zero(log, "derived $omega(t)$ with $r = -(I11 I22)$ times the printed $omega(t)$ with $-r$", "c's",
                            [solution[x] + I11 * I22 * printed_other[x] for x in (w1, w2)], RING.domain)
     result.errata.append(erratum(
         paper.C_S, "corrected",
@@ -230,18 +230,18 @@ def run(log: CertificateLog, options) -> DerivationResult:
     # 6. first integrals and the energy level
     F1 = (inertia * omega).dot(omega)
     F2 = gamma.dot(gamma)
-    c_f1 = certify_zero(log, "F1 = I11 w1^2 + I22 w2^2 is conserved by the derived Euler equations", "derived",
+    c_f1 = certify_zero(log, "$F1 = I11 w1^2 + I22 w2^2$ is conserved by the derived Euler equations", "derived",
                         lie_derivative(F1, field), RATIONAL)
-    c_f1p = certify_zero(log, "F1 is conserved by the printed gen12", paper.GEN12.label,
+    c_f1p = certify_zero(log, "$F1$ is conserved by the printed gen12", paper.GEN12.label,
                          lie_derivative(F1, paper.GEN12_FIELD), RATIONAL)
-    c_f2 = certify_zero(log, "F2 = <gamma, gamma> is conserved by the Poisson equations", "eq:whole",
+    c_f2 = certify_zero(log, "$F2 = inner(gamma, gamma)$ is conserved by the Poisson equations", "eq:whole",
                         lie_derivative(F2, poisson), RATIONAL)
     energy = (I11 * I22) ** 2 / D
-    c_en = certify_zero(log, "F1 on the derived normalised solution equals (I11 I22)^2 / D", "eq:enlev",
+    c_en = certify_zero(log, "$F1$ on the derived normalised solution equals $(I11 I22)^2/D$", "eq:enlev",
                         F1.subs(solution, simultaneous=True) - energy, RING.domain)
-    c_en_pr = certify_zero(log, "printed eq:enlev: F1 = 1/D on the printed solution", paper.ENLEV.label,
+    c_en_pr = certify_zero(log, "printed eq:enlev: $F1 = 1/D$ on the printed solution", paper.ENLEV.label,
                            F1.subs(printed, simultaneous=True) - paper.ENLEV_VALUE, RING.domain)
-    c_en_true = certify_zero(log, "printed eq:enlev: F1 = 1/D on the derived solution", paper.ENLEV.label,
+    c_en_true = certify_zero(log, "printed eq:enlev: $F1 = 1/D$ on the derived solution", paper.ENLEV.label,
                              F1.subs(solution, simultaneous=True) - paper.ENLEV_VALUE, RING.domain,
                              expect=Outcome.FAIL)
     result.formula("integrals", "section 2", "First integrals",
@@ -251,7 +251,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
     result.errata.append(erratum(
         paper.ENLEV, "corrected", r"F_1=\frac{(I_{11}I_{22})^2}{I_{13}^2I_{22}+I_{23}^2I_{11}}",
         "1/D is the energy of the printed solution of the printed gen12; on the solution of the derived "
-        "equations the factor (I11 I22)^2 comes from the time scale of gen12", c_en_pr, c_en_true, c_en))
+        "equations the factor $(I11 I22)^2$ comes from the time scale of gen12", c_en_pr, c_en_true, c_en))
 
     emit = [Emitted("omega_general", (t, I11, I22, I13, I23, r), ((T, sp.tanh(t)), (S, sp.sech(t))),
                     (solution[w1], solution[w2]), (c_sol.key,),

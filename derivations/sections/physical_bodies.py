@@ -76,8 +76,8 @@ def check_body(I: dict, p_value: int) -> tuple[bool, str]:
     spread = (I["I22"] - I["I33"]) ** 2 + 4 * I["I23"] ** 2  # (J2 - J3)^2
     triangle = I["I11"] < I["I22"] + I["I33"] and spread < I["I11"] ** 2
     ok = positive and meromorphic and triangle
-    return ok, (f"leading minors {', '.join(str(m) for m in minors)} > 0; p^2 = {p_value**2}; "
-                f"I11 < J2+J3 = {I['I22'] + I['I33']}; (J2-J3)^2 = {spread} < I11^2 = {I['I11'] ** 2}")
+    return ok, (f"leading minors {', '.join(str(m) for m in minors)} positive; $p^2 = {p_value**2}$; "
+                f"$I11 < J2 + J3$ with $J2 + J3 = {I['I22'] + I['I33']}$; $(J2-J3)^2 = {spread}$, below $I11^2 = {I['I11'] ** 2}$")
 
 
 def body_rows(log: CertificateLog, p_values) -> list[dict]:
@@ -88,8 +88,8 @@ def body_rows(log: CertificateLog, p_values) -> list[dict]:
         with stopwatch() as elapsed:
             ok, detail = check_body(body, p_value)
         cert = log.record(Certificate(
-            f"p = {p_value}: I = [[5/4,0,0],[0,1,1/(2p)],[0,1/(2p),1]] is positive definite, its eigenvalues satisfy "
-            "the triangle inequalities, and I22 (I11-I22)/I23^2 = p^2", "Proposition 4.1",
+            f"$p = {p_value}$: the inertia tensor $I$ with rows $(5/4, 0, 0)$, $(0, 1, 1/(2 p))$, $(0, 1/(2 p), 1)$ is positive definite, its eigenvalues satisfy "
+            "the triangle inequalities, and $I22 (I11-I22)/I23^2 = p^2$", "Proposition 4.1",
             "exact rational arithmetic", Outcome.PASS if ok else Outcome.FAIL, elapsed[0], 3, detail))
         det = body["I11"] * (body["I22"] * body["I33"] - body["I23"] ** 2)
         rows.append({"p": p_value, "I23": str(body["I23"]), "det": str(det), "certificate": cert.key})
@@ -101,32 +101,32 @@ def proof_errata(log: CertificateLog, result) -> None:
     label = "Proposition 4.1"
     printed_quadratic = [DELTA * (I22 * I33 - x) ** 2 - p**2 * I22 * x for x in (printed_roots(1), printed_roots(-1))]
     c_quadratic = certify_zero(
-        log, "the proof's I23^2 (both signs) solve (I11-I22)(I22 I33 - I23^2)^2 = p^2 I22 I23^2, i.e. the printed "
-        "eq:necc1 with det I = I11 (I22 I33 - I23^2) = 1", label, printed_quadratic, QUADRATIC_DOMAIN)
+        log, "the proof's $I23^2$ (both signs) solve $(I11-I22)(I22 I33 - I23^2)^2 = p^2 I22 I23^2$, i.e. the printed "
+        "eq:necc1 with $det(I) = I11 (I22 I33 - I23^2) = 1$", label, printed_quadratic, QUADRATIC_DOMAIN)
     c_printed_det1 = certify_zero(
-        log, "with det I = 1 the printed eq:necc1 reads (I11-I22)/(I11^2 I22 I23^2) = p^2 (I11 I22 I33 - 1 = I11 I23^2)",
+        log, "with $det(I) = 1$ the printed eq:necc1 reads $(I11-I22)/(I11^2 I22 I23^2) = p^2$ ($I11 I22 I33 - 1 = I11 I23^2$)",
         label, (I11 * I22 * I33 - 1 - I11 * I23**2).subs(I33, (1 / I11 + I23**2) / I22), FIELD_DOMAIN)
     corrected_root = I22 * DELTA / p**2
     c_not_corrected = certify_zero(
-        log, "the corrected eq:necc1's root I23^2 = I22 (I11-I22)/p^2 solves the proof's quadratic", label,
+        log, "the corrected eq:necc1's root $I23^2 = I22 (I11-I22)/p^2$ solves the proof's quadratic", label,
         DELTA * (I22 * I33 - corrected_root) ** 2 - p**2 * I22 * corrected_root, FIELD_DOMAIN, expect=Outcome.FAIL)
     second_printed = I22 / (2 * DELTA) * (-p**2 + p * PRINTED_ROOT)
     second_fixed = I22 / (2 * DELTA) * (-p**2 + p * ROOT)
     minus_root = printed_roots(-1)
     c_second = certify_zero(
-        log, "second display as printed (2 I33 under the root) equals I22 I33 - I23^2 for the root with sign -",
+        log, "second display as printed (2 I33 under the root) equals $I22 I33 - I23^2$ for the root with sign -",
         label, (I22 * I33 - minus_root) - second_printed, BOTH_ROOTS_DOMAIN, expect=Outcome.FAIL)
     c_second_fixed = certify_zero(
-        log, "second display with 4 I33 under the root equals I22 I33 - I23^2 for the root with sign -", label,
+        log, "second display with $4 I33$ under the root equals $I22 I33 - I23^2$ for the root with sign -", label,
         (I22 * I33 - minus_root) - second_fixed, QUADRATIC_DOMAIN)
     c_linear = certify_zero(
-        log, "corrected eq:necc1 (p^2 = I22 (I11-I22)/I23^2): I22 I33 - I23^2 = I22 (p^2 I33 - (I11-I22))/p^2", label,
+        log, "corrected eq:necc1 $(p^2 = I22 (I11-I22)/I23^2)$: $I22 I33 - I23^2 = I22 (p^2 I33 - (I11-I22))/p^2$", label,
         (I22 * I33 - corrected_root) - I22 * (p**2 * I33 - DELTA) / p**2, FIELD_DOMAIN)
     result.errata.append(erratum(
         PROP41, "corrected", DERIVED_LATEX,
-        "the proof's quadratic in I23^2 is the uncorrected eq:necc1 (det I = 1); under the corrected condition it "
-        "is linear with one positive root, and I22 I33 - I23^2 > 0 iff p^2 I33 > I11 - I22 (true for p >= 1 under "
-        "the proof's I33 + I22 > I11). The second display has 2 I33 under the root where the first gives 4 I33. "
-        "The proposition holds: certified example bodies for every p in the monodromy section",
+        "the proof's quadratic in $I23^2$ is the uncorrected eq:necc1 (det I = 1); under the corrected condition it "
+        "is linear with one positive root, and $I22 I33 - I23^2 > 0$ iff $p^2 I33 > I11 - I22$ (true for $p >= 1$ under "
+        "the proof's I33 + I22 > I11). The second display has $2 I33$ under the root where the first gives $4 I33$. "
+        "The proposition holds: certified example bodies for every $p$ in the monodromy section",
         c_quadratic, c_printed_det1, c_not_corrected, c_second, c_second_fixed, c_linear))
     result.errata.append(triangle_errata(log, ROOT, QUADRATIC_DOMAIN, FIELD_DOMAIN, minus_root))

@@ -115,9 +115,9 @@ def certify_laurent_series(log: CertificateLog, coth: list, csch: list) -> Certi
 
         ok = product(csch) == [Fraction(int(m == 0)) for m in range(n + 1)] and product(coth) == cosh
     return log.record(Certificate(
-        f"Laurent series at tau = 0 used by the Frobenius recursion and the gauge: tau csch(tau) sinh(tau)/tau = 1 "
-        f"and tau coth(tau) sinh(tau)/tau = cosh(tau) to order tau^{2 * n}", "Theorem 3.5",
-        "exact truncated power-series identity over Q (Fractions)", Outcome.PASS if ok else Outcome.FAIL,
+        f"Laurent series at $tau = 0$ used by the Frobenius recursion and the gauge: $tau csch(tau) sinh(tau)/tau = 1$ "
+        f"and $tau coth(tau) sinh(tau)/tau = cosh(tau)$ to order $tau^{2 * n}$", "Theorem 3.5",
+        "exact truncated power-series identity over $Q$ (Fractions)", Outcome.PASS if ok else Outcome.FAIL,
         elapsed[0], 2 * (n + 1), f"{n + 1} coefficients of each series"))
 
 
@@ -284,11 +284,11 @@ def logarithm_verdict(p_value: int) -> tuple[str, str, int, list[str], float]:
     positive = all(positive_factors(value) for _, _, value in nonzero)
     printed = [printed_parts(value) for _, _, value in nonzero]
     verdict = ("no logarithms" if not nonzero else
-               "logarithms for every d > 0" if positive else "logarithms (generic d)")
+               "logarithms for every $d > 0$" if positive else "logarithms (generic d)")
     detail = ("all resonance obstructions vanish identically: "
               + ", ".join(f"k={k} ({name})" for k, name, _ in obstructions)) if not nonzero else (
-        "non-zero obstruction " + ", ".join(f"k={k} ({name}): {text}" for (k, name, _), (text, _) in zip(nonzero, printed)))
-    return verdict, detail[:400], len(obstructions), [tex for _, tex in printed][:2], elapsed[0]
+        "non-zero obstruction " + ", ".join(f"$k = {k}$ ({name}): ${text}$" for (k, name, _), (text, _) in zip(nonzero[:2], printed)))
+    return verdict, detail, len(obstructions), [tex for _, tex in printed][:2], elapsed[0]
 
 
 def run(log: CertificateLog, options, model_result, kova_result, special_result) -> DerivationResult:
@@ -302,42 +302,42 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
     A_plus, A_minus = a0_matrix(omega1, omega2, 1), a0_matrix(omega1, omega2, -1)
     printed = sp.Matrix([[0, 0, -b_ + sp.I * c2_ / 2], [0, 0, a_ + sp.I * c1_ / 2],
                          [b_ - sp.I * c2_ / 2, -a_ + sp.I * c1_ / 2, 0]])
-    c_am1_plus = certify_zero(log, "printed eq:am1 is the residue of A(t) at t0 = +i pi/2", "eq:am1",
+    c_am1_plus = certify_zero(log, "printed eq:am1 is the residue of $A(t)$ at $t0 = +i pi/2$", "eq:am1",
                               list(A_plus - printed), GENERIC, expect=Outcome.FAIL)
-    c_am1_minus = certify_zero(log, "printed eq:am1 is the residue of A(t) at t0 = -i pi/2", "eq:am1",
+    c_am1_minus = certify_zero(log, "printed eq:am1 is the residue of $A(t)$ at $t0 = -i pi/2$", "eq:am1",
                                list(A_minus - printed), GENERIC, expect=Outcome.FAIL)
     fixed = printed.copy()
     fixed[1, 2] = a_ - sp.I * c1_ / 2
-    c_am1_fixed = certify_zero(log, "eq:am1 with entry (2,3) = a - i c1/2 is the residue at t0 = +i pi/2", "eq:am1",
+    c_am1_fixed = certify_zero(log, "eq:am1 with entry (2,3) equal to $a - i c1/2$ is the residue at $t0 = +i pi/2$", "eq:am1",
                                list(A_plus - fixed), GENERIC)
     rho2 = sp.Rational(1, 4) * (c1_**2 + c2_**2 - 4 * (a_**2 + b_**2) + 4 * sp.I * (a_ * c1_ + b_ * c2_))
-    c_ro = certify_zero(log, "det(A0 - rho) = -rho (rho^2 - rho2^2) at +i pi/2 with rho2^2 of eq:ro (conjugate at "
+    c_ro = certify_zero(log, "$det(A0 - rho) = -rho (rho^2 - rho2^2)$ at $+i pi/2$ with $rho2^2$ of eq:ro (conjugate at "
                         "-i pi/2)", "eq:ro", [sp.expand((A_plus - rho * sp.eye(3)).det()) + rho * (rho**2 - rho2),
                                               sp.expand((A_minus - rho * sp.eye(3)).det())
                                               + rho * (rho**2 - rho2.subs(sp.I, -sp.I))], GENERIC)
     result.errata.append(erratum(paper.AM1, "corrected", latex(fixed) + r"\ (t_0=i\pi/2)",
-                                 "entry (2,3) must be a - (i/2) c1: A0 has the structure of A(t) (entry (2,3) = "
-                                 "-entry (3,2)); eq:ro and eq:am2 are at +i pi/2", c_am1_plus, c_am1_minus,
+                                 "entry (2,3) must be $a - (i/2) c1$: $A0$ has the structure of $A(t)$ (entry (2,3) = "
+                                 "-entry (3,2)); eq:ro and eq:am2 are at $+i pi/2$", c_am1_plus, c_am1_minus,
                                  c_am1_fixed, c_ro))
     coeff = model_result.exports["coefficients"]
     derived = {a_: coeff["a"], b_: coeff["b"], c1_: 2 * coeff["c1/2"], c2_: 2 * coeff["c2/2"]}
     Lam2 = kova_result.exports["lambda_real"] + sp.I * kova_result.exports["lambda_imag"]
     rho2_derived = rho2.subs(derived, simultaneous=True)
-    c_link = certify_zero(log, "for the derived solution, rho2^2 (eq:ro, t0 = i pi/2) equals the Kovalevskaya "
-                          "Lambda^2 of the Darboux point with the opposite branch of r", "eq:ro",
+    c_link = certify_zero(log, "for the derived solution, $rho2^2$ (eq:ro, $t0 = i pi/2$) equals the Kovalevskaya "
+                          "$Lambda^2$ of the Darboux point with the opposite branch of $r$", "eq:ro",
                           rho2_derived - Lam2.subs(r, -r), I_DOMAIN)
     Dm = I11 * I23**2 + I22 * I13**2
     aa, bb, cc1, cc2 = (derived[v] for v in (a_, b_, c1_, c2_))
-    c_g2 = certify_zero(log, "derived coefficients: a c1 + b c2 = 2 r I11 I22 I13 I23 (I11 - I22)/D^2 and "
-                        "c1^2 + c2^2 - 4(a^2 + b^2) = 4 Re Lambda^2", "eq:neccg2",
+    c_g2 = certify_zero(log, "derived coefficients: $a c1 + b c2 = 2 r I11 I22 I13 I23 (I11 - I22)/D^2$ and "
+                        "$c1^2 + c2^2 - 4(a^2 + b^2) = 4 Re(Lambda^2)$", "eq:neccg2",
                         [aa * cc1 + bb * cc2 - 2 * r * I11 * I22 * I13 * I23 * (I11 - I22) / Dm**2,
                          cc1**2 + cc2**2 - 4 * (aa**2 + bb**2) - 4 * kova_result.exports["lambda_real"]], I_DOMAIN)
-    c_n2 = certify_zero(log, "I13 = 0: c1 = b = 0 and c2^2 - 4 a^2 = 4 p^2 with p^2 = I22 (I11 - I22)/I23^2",
+    c_n2 = certify_zero(log, "$I13 = 0$: $c1 = b = 0$ and $c2^2 - 4 a^2 = 4 p^2$ with $p^2 = I22 (I11 - I22)/I23^2$",
                         "eq:necc2", [cc1.subs(I13, 0), bb.subs(I13, 0),
                                      (cc2**2 - 4 * aa**2).subs(I13, 0) - 4 * I22 * (I11 - I22) / I23**2], I_DOMAIN)
     result.errata.append(erratum(paper.NECCG2, "confirmed", paper.NECCG2.latex,
                                  "as a statement about the coefficients of the normalised solution (which are "
-                                 "-I11 I22 times the printed c's)", c_g2, c_link))
+                                 "$-I11 I22$ times the printed c's)", c_g2, c_link))
     result.errata.append(erratum(paper.NECC2, "confirmed", paper.NECC2.latex,
                                  "with the derived coefficients; equivalent to the corrected eq:necc1", c_n2))
     result.formula("am1", "eq:am1, eq:ro", "Residue of $A(t)$ at $t_0=i\\pi/2$ and its eigenvalues",
@@ -347,7 +347,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
     # special case: S, gauge U, B0
     A0 = special_result.exports["A0"]
     S_printed = sp.Matrix([[-sp.I * c / d, -sp.I / c, sp.I * c / d], [1 / d, 1, -1 / d], [1, 0, 1]])
-    c_S = certify_zero(log, "printed S: S^-1 A0 S = diag(p, 0, -p) (A0 of eq:am2)", "eq:am2",
+    c_S = certify_zero(log, "printed $S$: $S^-1 A0 S = diag(p, 0, -p)$ ($A0$ of eq:am2)", "eq:am2",
                        list(A0 * S_printed - S_printed * sp.diag(p, 0, -p)), PD_DOMAIN)
     result.formula("S", "eq:am2", "Diagonalisation of $A_0$", r"S^{-1}A_0S=\operatorname{diag}(p,0,-p),\ S="
                    + latex(S_printed), c_S)
@@ -356,10 +356,10 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
         with stopwatch() as elapsed:
             max_pole, residue_ok = gauge_transformed_pole(S_printed, p_value)
         gauge_certs.append(log.record(Certificate(
-            f"p = {p_value}: the printed gauge U = diag(tau^2p, tau^p, 1) gives B = -p Id/tau + holomorphic",
-            "Theorem 3.5", "exact Laurent expansion (Bernoulli series) in Q(d)[c,i]/(c^2-d^2-1, i^2+1)",
+            f"$p = {p_value}$: the printed gauge $U = diag(tau^2p, tau^p, 1)$ gives $B = -p Id/tau$ + holomorphic",
+            "Theorem 3.5", "exact Laurent expansion (Bernoulli series) in $Q(d)[c,i]/(c^2-d^2-1, i^2+1)$",
             Outcome.PASS if (max_pole <= 1 and residue_ok) else Outcome.FAIL, elapsed[0], max_pole,
-            f"highest pole order of B is {max_pole}; residue {'is' if residue_ok else 'is not'} -p Id",
+            f"highest pole order of $B$ is {max_pole}; residue {'is' if residue_ok else 'is not'} $-p Id$",
             expected=Outcome.FAIL)))
 
     # logarithms per integer p
@@ -369,8 +369,8 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
     for p_value, (verdict, detail, count, typeset, seconds) in zip(
             values, log.map_per_p("Frobenius logarithms at t0", values, logarithm_verdict)):
         cert = log.record(Certificate(
-            f"p = {p_value}: local solutions of eq:ps at t0 = i pi/2 have {verdict}", "Theorem 3.5",
-            "exact Frobenius recursion in Q[d, 1/d] (a subring of Q(d); resonance obstructions)", Outcome.PASS,
+            f"$p = {p_value}$: local solutions of eq:ps at $t0 = i pi/2$ have {verdict}", "Theorem 3.5",
+            "exact Frobenius recursion in Q[d, 1/d] (a subring of $Q(d)$; resonance obstructions)", Outcome.PASS,
             seconds, count, detail))
         log_rows.append({"p": p_value, "parity": "odd" if p_value % 2 else "even", "verdict": verdict,
                          "obstructions": typeset, "certificate": cert.key})
@@ -380,16 +380,16 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
             paper.THEOREM31, "corrected",
             r"\text{all solutions of eq:whole are meromorphic iff }I_{13}=0,\ \frac{I_{22}(I_{11}-I_{22})}{I_{23}^2}=p^2"
             r"\text{ or }I_{23}=0,\ \frac{I_{11}(I_{11}-I_{22})}{I_{13}^2}=-p^2,\ p\text{ odd}",
-            "for even p the exact Frobenius recursion at t0 = i pi/2 meets a non-zero resonance obstruction "
-            "(logarithms for every d > 0); the gauge argument fails because B = U^-1 S^-1 A S U - U^-1 U' has "
+            "for even $p$ the exact Frobenius recursion at $t0 = i pi/2$ meets a non-zero resonance obstruction "
+            "(logarithms for every d > 0); the gauge argument fails because $B = U^-1 S^-1 A S U - U^-1 deriv(U, tau)$ has "
             "poles of order > 1, so Theorem 3.5 does not apply",
             *[c for c in log.certificates if c.derivation == NAME and c.label == "Theorem 3.5"][:8], *gauge_certs))
     result.notes.append(
-        "Theorem 3.1, sufficiency (no logarithms for every integer p): " + ("confirmed for every p <= %d." % options.pmax
+        "Theorem 3.1, sufficiency (no logarithms for every integer p): " + ("confirmed for every $p <= %d$." % options.pmax
                                                               if not has_logs else
-                                                              "refuted for p = " + ", ".join(map(str, has_logs))
+                                                              "refuted for $p$ = " + ", ".join(map(str, has_logs))
                                                               + " (a non-zero resonance obstruction); confirmed for "
-                                                              "the other p <= %d." % options.pmax))
+                                                              "the other $p <= %d$." % options.pmax))
 
     # physical bodies (Proposition 4.1) and the displays of its proof
     body_rows = physical_bodies.body_rows(log, options.p_values())

@@ -90,11 +90,11 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     g, h, R = [g1, g2, g3], [h1, h2, h3], sp.diag(-1, 1, 1)
 
     # 1. reversal symmetry and 2. rigidity
-    c_sym = certify_zero(log, "R = diag(-1,1,1): -R (g x omega(-t)) = (R g) x omega(t) with omega1 odd, omega2 even",
+    c_sym = certify_zero(log, "R = diag(-1,1,1): -R (g x omega(-t)) = (R g) x omega(t) with $omega1$ odd, $omega2$ even",
                          "eq:whole", -R * _f(g, (-w1, w2)) - _f(R * sp.Matrix(g), (w1, w2)), POLY)
-    c_rigid = certify_zero(log, "<g, h> is constant along two solutions of eq:whole", "eq:whole",
+    c_rigid = certify_zero(log, "$inner(g, h)$ is constant along two solutions of eq:whole", "eq:whole",
                            sp.Matrix(_f(g, (w1, w2))).dot(sp.Matrix(h)) + sp.Matrix(g).dot(_f(h, (w1, w2))), POLY)
-    c_half = certify_zero(log, "<G, R G> = 1 - 2 G1^2 on |G| = 1", "ss",
+    c_half = certify_zero(log, "$inner(G, R G) = 1 - 2 G1^2$ on $abs(G) = 1$", "ss",
                           sp.Matrix(g).dot(R * sp.Matrix(g)) - (1 - 2 * g1**2), SPHERE)
 
     # 3. z -> 1 exponent, Gamma-function value, the lemma gam_0
@@ -106,7 +106,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     enclosed, fast_rotation = log.map_per_p(*PREFETCH[0])
     c_grid_balls, c_lemma = (log.record(c) for c in enclosed)
     result.errata.append(erratum(paper.GAM_0, "confirmed", paper.GAM_0.latex,
-                                 "enclosed: the validated ss solution at t = -1.5 against Arb's 3F2 (ball certificate)",
+                                 "enclosed: the validated ss solution at $t = -1.5$ against Arb's 3F2 (ball certificate)",
                                  c_lemma))
 
     # 4. the paper's monodromy route: sigma1 and the limit of gamma1
@@ -114,43 +114,43 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
            "b1": _sin_pi(I_UNIT * H), "b2": _sin_pi(I_UNIT / H)}
     sigma1 = sin["a1"] * sin["a2"] * sin["a3"] / (sin["b1"] * sin["b2"])
     cos_y, cosh_x = (E + 1 / E) / 2, (H + 1 / H) / 2
-    c_sigma = certify_zero(log, "sigma1 = sin(pi a1) sin(pi a2) sin(pi a3)/(sin(pi b1) sin(pi b2)) = "
-                           "cos^2(pi p/2)/cosh^2(pi p/(2d)) (E = e^{i pi p/2}, H = e^{pi p/(2d)})", "Prop. 5.1",
+    c_sigma = certify_zero(log, "$sigma1 = sin(pi a1) sin(pi a2) sin(pi a3)/(sin(pi b1) sin(pi b2)) = "
+                           "cos(pi p/2)^2/cosh(pi p/(2 d))^2$ ($E = e^(i pi p/2)$, $H = e^(pi p/(2 d))$)", "Prop. 5.1",
                            sigma1 - cos_y**2 / cosh_x**2, EXPONENTIALS)
     exp_s = -I_UNIT  # exp(pi i s), s = -1/2
     c_limit = certify_zero(log, "after the loop: gamma1(+oo) = 1 - 2 i exp(pi i s) sigma1 = 1 - 2 sigma1 (s = -1/2)",
                            "angle (limit)", (1 - 2 * I_UNIT * exp_s * sig) - (1 - 2 * sig), EXPONENTIALS)
-    c_limit_printed = certify_zero(log, "printed: 1 - 2 i exp(pi i/2) sigma1 = 1 - 2 sigma1", "angle (limit)",
+    c_limit_printed = certify_zero(log, "printed: $1 - 2 i exp(pi i/2) sigma1 = 1 - 2 sigma1$", "angle (limit)",
                                    (1 - 2 * I_UNIT * I_UNIT * sig) - (1 - 2 * sig), EXPONENTIALS, expect=Outcome.FAIL)
     X = sp.Symbol("X")  # exp(s) = exp(-1/2) as printed (no pi i): transcendental, a free symbol
-    c_factor_printed = certify_zero(log, "printed factor exp(beta1+beta2-alpha1-alpha2-alpha3) (no pi i) gives the real "
-                                    "limit 1 - 2 sigma1", "Prop. 5.1", (1 - 2 * I_UNIT * X * sig) - (1 - 2 * sig),
+    c_factor_printed = certify_zero(log, "printed factor $exp(beta1+beta2-alpha1-alpha2-alpha3)$ (no pi i) gives the real "
+                                    "limit $1 - 2 sigma1$", "Prop. 5.1", (1 - 2 * I_UNIT * X * sig) - (1 - 2 * sig),
                                     Domain("Q(X, sigma1)[i]/(i^2+1)", EXPONENTIALS.extensions), expect=Outcome.FAIL)
-    c_route = certify_zero(log, "the two routes agree: 1 - 2 G1(0)^2 = 1 - 2 sigma1 with G1(0) = -cos(pi p/2)/cosh(...)",
+    c_route = certify_zero(log, "the two routes agree: $1 - 2 G1(0)^2 = 1 - 2 sigma1$ with G1(0) = -cos(pi p/2)/cosh(...)",
                            "Theorem 5.2", (1 - 2 * (cos_y / cosh_x) ** 2) - (1 - 2 * sigma1), EXPONENTIALS)
     c_grid = log.record(fast_rotation[0])
     at_p2 = {E: -1}  # p = 2: cos(pi p/2) = -1 < 0
-    c_angle_printed = certify_zero(log, "p = 2: printed cos(Delta psi/2) = cos(pi p/2)/cosh(pi p/(2d)) equals the "
+    c_angle_printed = certify_zero(log, "$p = 2$: printed $cos(Delta psi/2) = cos(pi p/2)/cosh(pi p/(2d))$ equals the "
                                    "value |cos(pi p/2)|/cosh(...) of an angle in [0, pi]", "Theorem 5.2",
                                    (cos_y / cosh_x).subs(at_p2) - 1 / cosh_x, EXPONENTIALS, expect=Outcome.FAIL)
     g1_inf, cos_dpsi = sp.symbols("g1_inf cos_dpsi")
-    c_text_printed = certify_zero(log, "text: gamma1(+oo) = cos(Delta psi), with cos(Delta psi) = -gamma1(+oo)",
+    c_text_printed = certify_zero(log, "text: $gamma1(+oo) = cos(Delta psi)$, with $cos(Delta psi) = -gamma1(+oo)$",
                                   "ss (text)", (g1_inf - cos_dpsi).subs(cos_dpsi, -g1_inf), Domain("Q(g1_inf)"),
                                   expect=Outcome.FAIL)
 
     # the emitted evaluation form
     tanh_x, sech_x = shx / chx, 1 / chx
-    c_stable = certify_zero(log, "(sqrt(tanh^2 x + sin^2 y sech^2 x), |cos y| sech x) is on the unit circle and its "
-                            "second entry squared is cos^2 y / cosh^2 x", "Theorem 5.2",
+    c_stable = certify_zero(log, "$(sqrt(tanh(x)^2 + sin(y)^2 sech(x)^2), abs(cos(y)) sech(x))$ is on the unit circle and its "
+                            "second entry squared is $cos(y)^2/cosh(x)^2$", "Theorem 5.2",
                             [tanh_x**2 + sy**2 * sech_x**2 + cy**2 * sech_x**2 - 1,
                              (cy * sech_x) ** 2 - cy**2 / chx**2], HALF_ANGLE)
 
     # Theorem 5.2's p and d in terms of the inertia tensor (det I = 1, I13 = 0)
     det_one = {I33: I33_FROM_DET.subs(I13, 0)}
     p_squared = I22 * (I11 - I22) / I23**2
-    c_p = certify_zero(log, "Theorem 5.2: printed p^2 = (I11-I22)/(I11 I22 (I11 I22 I33 - 1)) equals the derived p^2",
+    c_p = certify_zero(log, "Theorem 5.2: printed $p^2 = (I11-I22)/(I11 I22 (I11 I22 I33 - 1))$ equals the derived $p^2$",
                        "Theorem 5.2 (p)", paper.ANGLE_P2.subs(det_one) - p_squared, I_DOMAIN, expect=Outcome.FAIL)
-    c_p_fixed = certify_zero(log, "derived p^2 = I11 I22 (I11 - I22)/(I11 I22 I33 - 1) with det I = 1, I13 = 0",
+    c_p_fixed = certify_zero(log, "derived $p^2 = I11 I22 (I11 - I22)/(I11 I22 I33 - 1)$ with det I = 1, $I13 = 0$",
                              "Theorem 5.2 (p)", (I11 * I22 * (I11 - I22) / (I11 * I22 * I33 - 1)).subs(det_one)
                              - p_squared, I_DOMAIN)
 
@@ -165,28 +165,28 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     result.errata.append(erratum(
         paper.MONODROMY_FACTOR, "corrected",
         r"\mathcal F_1\to\mathcal F_1-2i\exp\big(\pi i(\beta_1+\beta_2-\alpha_1-\alpha_2-\alpha_3)\big)(\cdots)",
-        "the exponent lacks the factor pi i (as printed the limit is not even real); with it exp(pi i s) = -i "
+        "the exponent lacks the factor $pi i$ (as printed the limit is not even real); with it exp(pi i s) = -i "
         "(s = -1/2)", c_factor_printed, c_s, c_limit))
     result.errata.append(erratum(
         paper.LIMIT_GAMMA1, "corrected",
         r"\lim_{t\to\infty}\gamma_1=1-2i\exp(-\pi i/2)\sigma_1=1-2\frac{\cos^2(\pi p/2)}{\cosh^2(\pi p/(2d))}",
-        "the middle expression equals 1 + 2 sigma1 (exp(pi i s) with s = -1/2 is exp(-pi i/2)); the right-hand "
-        "side is right with q = d", c_limit_printed, c_limit, c_grid_balls, c_grid))
+        "the middle expression equals 1 + 2 sigma1 (exp(pi i s) with $s = -1/2$ is exp(-pi i/2)); the right-hand "
+        "side is right with $q = d$", c_limit_printed, c_limit, c_grid_balls, c_grid))
     result.errata.append(erratum(
         paper.ANGLE, "corrected",
         r"\cos\frac{\Delta\psi}2=\frac{|\cos(\pi p/2)|}{\cosh(\pi p/(2d))}\ (q=d),\ \Delta\psi\in[0,\pi]",
-        "q is undefined in the paper: derivation (beta = 1/2 -+ ip/(2d)) and integration give q = d; without the "
-        "absolute value the printed right-hand side is -gamma_1(0), negative for 4k+1 < p < 4k+3, which would put "
-        "Delta psi outside [0, pi]", c_angle_printed, c_sigma, c_route, c_grid_balls, c_grid))
+        "$q$ is undefined in the paper: derivation (beta = 1/2 -+ ip/(2d)) and integration give $q = d$; without the "
+        "absolute value the printed right-hand side is $-gamma_1(0)$, negative for 4k+1 < p < 4k+3, which would put "
+        "$Delta psi$ outside [0, pi]", c_angle_printed, c_sigma, c_route, c_grid_balls, c_grid))
     result.errata.append(erratum(
         paper.ANGLE_P, "corrected",
         r"d=\sqrt{\frac{I_{11}-I_{22}}{I_{22}}},\ p=\sqrt{\frac{I_{11}I_{22}(I_{11}-I_{22})}{I_{11}I_{22}I_{33}-1}}",
-        "d confirmed; p carries the printed time scale of gen12 (as eq:necc1): factor I11 I22", c_p, c_p_fixed))
+        "$d$ confirmed; $p$ carries the printed time scale of gen12 (as eq:necc1): factor $I11 I22$", c_p, c_p_fixed))
     result.errata.append(erratum(
         paper.SS_LIMIT_TEXT, "corrected",
         r"\gamma(t)\to(-\cos\Delta\psi,\ \sin\Delta\psi\cos(at+\varphi),\ -\sin\Delta\psi\sin(at+\varphi))^T,\ a=p/d",
-        "the text's first component contradicts cos Delta psi = -lim gamma1 two lines later (the formula is "
-        "the right one: the integration confirms it); the sense of rotation follows omega1 -> +a at +oo",
+        "the text's first component contradicts $cos(Deltapsi)$ = -lim gamma1 two lines later (the formula is "
+        "the right one: the integration confirms it); the sense of rotation follows omega1 -> +a at $+oo$",
         c_text_printed, c_half, c_grid_balls, c_grid))
     xs, ss, cs = sp.symbols("x s c", nonnegative=True)
     emit = [Emitted("scattering_angle", (xs, ss, cs), (),

@@ -91,10 +91,10 @@ def grid(log: CertificateLog) -> tuple[Certificate, Certificate]:
             out += [e.gamma_at_zero[0] - g0, e.cos_angle - (2 * g0 * g0 - 1)]
         return out
 
-    points = f"{len(GRID_P) * len(GRID_D)} points p in {{{', '.join(GRID_P)}}} x d in {{{', '.join(GRID_D)}}}"
+    points = f"{len(GRID_P) * len(GRID_D)} points: $p$ in {', '.join(GRID_P)}, $d$ in {', '.join(GRID_D)}"
     c_grid = certify_enclosure(
-        log, f"the ss solution enclosed from t = -oo to +oo has G1(0) = -cos(pi p/2)/cosh(pi p/(2d)) and cos(Delta psi) "
-        f"= 2 cos^2(pi p/2)/cosh^2(pi p/(2d)) - 1 to {TOLERANCE} ({points})", "Theorem 5.2", against_closed_form,
+        log, f"the ss solution enclosed from $t = -oo$ to $+oo$ has $G1(0) = -cos(pi p/2)/cosh(pi p/(2d))$ and $cos(Deltapsi) "
+        f"= 2 cos(pi p/2)^2/cosh(pi p/(2 d))^2 - 1$ to ${TOLERANCE}$ ({points})", "Theorem 5.2", against_closed_form,
         arb(TOLERANCE), prec=int(3.33 * GRID_DIGITS + 40), doublings=1,
         what="validated integration (limit series with majorant remainders + Taylor steps with Cauchy bounds, "
              "suslov.kernel.enclosure) against the closed form")
@@ -112,8 +112,8 @@ def grid(log: CertificateLog) -> tuple[Certificate, Certificate]:
         return out
 
     c_lemma = certify_enclosure(
-        log, "gam_0: the ss solution has G1 = -sqrt(1-z) 3F2(1/2,(1+p)/2,(1-p)/2; 1/2-ip/(2d), 1/2+ip/(2d); z), "
-        f"z = sech^2 t, at t = -{SERIES_START} to {TOLERANCE} ({points})", "gam_0", lemma, arb(TOLERANCE),
+        log, "gam_0: the ss solution has $G1 = -sqrt(1-z) hyper((1/2, (1+p)/2, (1-p)/2), (1/2 - i p/(2 d), 1/2 + i p/(2 d)), z)$, "
+        f"$z = sech(t)^2$, at $t = -{SERIES_START}$ to {TOLERANCE} ({points})", "gam_0", lemma, arb(TOLERANCE),
         prec=int(3.33 * GRID_DIGITS + 40), doublings=0,
-        what="validated ss solution (limit series at t = -oo with its remainder bound) against Arb's 3F2")
+        what="validated ss solution (limit series at $t = -oo$ with its remainder bound) against Arb's 3F2")
     return c_grid, c_lemma

@@ -48,13 +48,14 @@ def fast_rotation_certificate(log: CertificateLog) -> Certificate:
                 worst_cos = max(worst_cos, abs(-along - (2 * closed_form_half_cos(pv, dv) ** 2 - 1)))
     points = len(GRID_P) * len(GRID_D)
     ok = max(worst_g0, worst_cos) <= mpmath.mpf(10) ** (-GRID_DIGITS)
-    detail = (f"{points} points p in {{{', '.join(GRID_P)}}} x d in {{{', '.join(GRID_D)}}}; "
+    detail = (f"{points} points: $p$ in {', '.join(GRID_P)}, $d$ in {', '.join(GRID_D)}; "
               f"max |G1(0) - closed| = {mpmath.nstr(worst_g0, 3)}, max |cos dpsi - closed| = {mpmath.nstr(worst_cos, 3)}")
     return log.record(Certificate(
-        "the ss solution integrated from t = -oo to +oo gives G1(0) = -cos(pi p/2)/cosh(pi p/(2d)) and "
-        "cos(Delta psi) = -G1(+oo) = 2 cos^2(pi p/2)/cosh^2(pi p/(2d)) - 1 (to 1e-30)", "Theorem 5.2",
-        f"Frobenius series at t = +-oo + Taylor steps in mpmath at {GRID_DPS} digits (evidence, not proof: "
-        "ball enclosures of this column cost 16 s even at 10 digits, 40% of a cold build; d = 0.5, 2, 50 are enclosed)",
+        "the ss solution integrated from $t = -oo$ to $+oo$ gives $G1(0) = -cos(pi p/2)/cosh(pi p/(2d))$ and "
+        "$cos(Deltapsi) = -G1(oo) = 2 cos(pi p/2)^2/cosh(pi p/(2 d))^2 - 1$ (to $1e-30$)", "Theorem 5.2",
+        f"Frobenius series at $t = pm(oo)$ and Taylor steps in mpmath at {GRID_DPS} digits (evidence, not proof: "
+        "ball enclosures of this column cost 16 s even at 10 digits, 40 percent of a cold build; $d = 0.5, 2, 50$ are "
+        "enclosed)",
         Outcome.PASS if ok else Outcome.FAIL, elapsed[0], points, detail))
 
 

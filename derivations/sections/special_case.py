@@ -121,20 +121,20 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
 
     # 1. the coefficients with I13 = 0, and the parametrisation by p, d
     zero13 = {name: flint_factor.factor(value.subs(I13, 0)) for name, value in coeff.items()}
-    c_coef = certify_zero(log, "with I13 = 0: b = c1 = 0, a = -I22/I23, c2/2 = r/I23", "eq:necc2",
+    c_coef = certify_zero(log, "with $I13 = 0$: $b = c1 = 0$, $a = -I22/I23$, $c2/2 = r/I23$", "eq:necc2",
                           [zero13["b"], zero13["c1/2"], zero13["a"] + I22 / I23, zero13["c2/2"] - r / I23],
                           model.WITH_R)
-    c_c2 = certify_zero(log, "under a = p/d, c^2 = d^2+1: c2 = -2 c a (branch r = I22 c)", "eq:necc2",
+    c_c2 = certify_zero(log, "under $a = p/d$, $c^2 = d^2+1$: $c2 = -2 c a$ (branch $r = I22 c$)", "eq:necc2",
                         (2 * zero13["c2/2"]).subs(SUBSTITUTION) + 2 * c * p / d, PD_DOMAIN)
     a_val = zero13["a"]
     p_squared = I22 * (I11 - I22) / I23**2
-    c_p2 = certify_zero(log, "p^2 = a^2 d^2 = I22 (I11 - I22)/I23^2 with d^2 = (I11 - I22)/I22", "eq:necc1",
+    c_p2 = certify_zero(log, "$p^2 = a^2 d^2 = I22 (I11 - I22)/I23^2$ with $d^2 = (I11 - I22)/I22$", "eq:necc1",
                         a_val**2 * (I11 - I22) / I22 - p_squared, I_DOMAIN)
     det_one = {I33: model.I33_FROM_DET.subs(I13, 0)}
     necc1 = paper.NECC1_P2.subs(det_one)
-    c_necc1 = certify_zero(log, "printed eq:necc1 (I13 = 0, det I = 1) equals the derived p^2", "eq:necc1",
+    c_necc1 = certify_zero(log, "printed eq:necc1 ($I13 = 0$, $det(I) = 1$) equals the derived $p^2$", "eq:necc1",
                            necc1 - p_squared, I_DOMAIN, expect=Outcome.FAIL)
-    c_necc1_scale = certify_zero(log, "derived p^2 = (I11 I22)^2 x printed eq:necc1 left-hand side", "eq:necc1",
+    c_necc1_scale = certify_zero(log, "derived $p^2 = (I11 I22)^2$ times the printed eq:necc1 left-hand side", "eq:necc1",
                                  p_squared - (I11 * I22) ** 2 * necc1, I_DOMAIN)
     result.formula("pmap", "eq:necc1, eq:cpr", "Parameters from the inertia tensor ($I_{13}=0$)",
                    r"c^2=\frac{I_{11}}{I_{22}}=d^2+1,\quad p=a\,d=-\frac{I_{22}\,d}{I_{23}},\quad "
@@ -142,32 +142,32 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     result.errata.append(erratum(
         paper.NECC1, "corrected", r"p^2=\frac{I_{22}(I_{11}-I_{22})}{I_{23}^2}"
         r"=\frac{I_{11}I_{22}(I_{11}-I_{22})}{I_{11}I_{22}I_{33}-1}\ (\det\mathbb I=1)",
-        "the printed value is p^2 of the printed gen12, whose time runs -I11 I22 times faster; "
-        "for the equations derived from 3.25 the parameter gains the factor (I11 I22)^2 "
+        "the printed value is $p^2$ of the printed gen12, whose time runs $-I11 I22$ times faster; "
+        "for the equations derived from 3.25 the parameter gains the factor $(I11 I22)^2$ "
         "(the Kovalevskaya side of Theorem 3.1 is re-derived separately)",
         c_necc1, c_necc1_scale))
 
     a_printed = paper.OMEGAS_A.subs(det_one)
-    c_a_pr = certify_zero(log, "printed omegas: a = (I22 I33 - I23^2)/I23 equals the derived a", "omegas",
+    c_a_pr = certify_zero(log, "printed omegas: $a = (I22 I33 - I23^2)/I23$ equals the derived a", "omegas",
                           a_printed - a_val, I_DOMAIN, expect=Outcome.FAIL)
-    c_a_scale = certify_zero(log, "derived a = -(I11 I22) x printed a (det I = 1)", "omegas",
+    c_a_scale = certify_zero(log, "derived $a = -(I11 I22)$ times the printed $a$ ($det(I) = 1$)", "omegas",
                              a_val + I11 * I22 * a_printed, I_DOMAIN)
 
     # 2. the equations in p, d
     sysfin = {v: flint_factor.factor(field[v].subs(SUBSTITUTION)) for v in (w1, w2)}
-    c_sys = certify_zero(log, "derived Euler equations with I13 = 0 become eq:sysfin with the + sign",
+    c_sys = certify_zero(log, "derived Euler equations with $I13 = 0$ become eq:sysfin with the + sign",
                          paper.SYSFIN.label, [sysfin[v] - paper.printed_sysfin(1)[v] for v in (w1, w2)], PD_FIELD)
     c_sys_minus = certify_zero(log, "eq:sysfin with the - sign is the derived system", paper.SYSFIN.label,
                                [sysfin[v] - paper.printed_sysfin(-1)[v] for v in (w1, w2)], PD_FIELD,
                                expect=Outcome.FAIL)
     F1 = paper.CCALKI_F1
-    c_f1 = certify_zero(log, "F1 = (d^2+1) w1^2 + w2^2 is conserved by eq:sysfin (+)", paper.CCALKI.label,
+    c_f1 = certify_zero(log, "$F1 = (d^2+1) w1^2 + w2^2$ is conserved by eq:sysfin (+)", paper.CCALKI.label,
                         lie_derivative(F1, paper.printed_sysfin(1)), PD_FIELD)
-    c_f1_minus = certify_zero(log, "F1 is conserved by eq:sysfin with the - sign", paper.CCALKI.label,
+    c_f1_minus = certify_zero(log, "$F1$ is conserved by eq:sysfin with the - sign", paper.CCALKI.label,
                               lie_derivative(F1, paper.printed_sysfin(-1)), PD_FIELD, expect=Outcome.FAIL)
-    c_f2 = certify_zero(log, "F2 = <gamma, gamma> is conserved by the Poisson equations", paper.CCALKI.label,
+    c_f2 = certify_zero(log, "$F2 = inner(gamma, gamma)$ is conserved by the Poisson equations", paper.CCALKI.label,
                         lie_derivative(paper.CCALKI_F2, poisson), PD_FIELD)
-    c_energy = certify_zero(log, "I11 w1^2 + I22 w2^2 = I22 F1 under the substitution", paper.CCALKI.label,
+    c_energy = certify_zero(log, "$I11 w1^2 + I22 w2^2 = I22 F1$ under the substitution", paper.CCALKI.label,
                             (I11 * w1**2 + I22 * w2**2).subs(SUBSTITUTION) - I22 * F1, PD_FIELD)
     result.formula("sysfin", "eq:sysfin", "Euler equations for $I_{13}=0$",
                    r"\dot\omega_1=" + latex(sysfin[w1]) + r",\quad\dot\omega_2=" + latex(sysfin[w2]),
@@ -178,11 +178,11 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     result.errata.append(erratum(
         paper.SYSFIN, "corrected", r"\dot\omega_1=+" + latex(sysfin[w1]) + r",\ \dot\omega_2=" + latex(sysfin[w2]),
         "the sign is not a free choice: only + follows from the Euler equations, and with - the "
-        "energy F1 of eq:ccalki is not conserved", c_sys, c_sys_minus, c_f1_minus))
+        "energy $F1$ of eq:ccalki is not conserved", c_sys, c_sys_minus, c_f1_minus))
 
     # 3. the solution omega(t) in p, d
     solution = {v: sp.expand(general[v].subs(SUBSTITUTION)) for v in (w1, w2)}
-    c_sol = certify_zero(log, "omega1 = (p/d) tanh t, omega2 = -(p/d) c sech t solve eq:sysfin, both branches of c",
+    c_sol = certify_zero(log, "$omega1 = (p/d) tanh t$, $omega2 = -(p/d) c sech t$ solve eq:sysfin, both branches of $c$",
                          "omegas", ode_residuals(PD_RING, solution, sysfin), PD_RING.domain)
     # second exact route (was an mpmath.diff spot check): rational in x = e^t, d/dt = x d/dx
     numeric_certs = [certify_ode_in_exp(
@@ -196,38 +196,38 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                    c_sol, *numeric_certs, c_form)
     result.errata.append(erratum(
         paper.OMEGAS, "corrected", r"\omega_1=a\tanh t,\ \omega_2=-ac\,\mathrm{sech}\,t,\ a=-\frac{I_{22}}{I_{23}}",
-        "the form is confirmed; the printed a = (I22 I33 - I23^2)/I23 = 1/(I11 I23) (det I = 1) is the value "
-        "for the printed gen12, -1/(I11 I22) times the derived one", c_form, c_a_pr, c_a_scale))
+        "the form is confirmed; the printed $a = (I22 I33 - I23^2)/I23 = 1/(I11 I23)$ ($det(I) = 1$) is the value "
+        "for the printed gen12, $-1/(I11 I22)$ times the derived one", c_form, c_a_pr, c_a_scale))
 
     level = sp.expand(F1.subs(solution, simultaneous=True))
-    c_level = certify_zero(log, "F1 = a^2 c^2 = p^2 (d^2+1)/d^2 on omega(t)", "eq:ccalki",
+    c_level = certify_zero(log, "$F1 = a^2 c^2 = p^2 (d^2+1)/d^2$ on $omega(t)$", "eq:ccalki",
                            level - p**2 * (d**2 + 1) / d**2, PD_RING.domain)
     result.formula("level", "eq:ccalki", "Energy level of the normalised solution",
                    r"F_1=a^2c^2=\frac{p^2(d^2+1)}{d^2}", c_level)
     result.errata.append(erratum(paper.F1_VALUE_SENTENCE, "not comparable", r"F_1=a^2c^2=\frac{p^2(d^2+1)}{d^2}",
-                                 "the printed sentence breaks off after 'F_1 = a^2 c^2 ='; completed by derivation",
+                                 "the printed sentence breaks off after '$F1 = a^2 c^2$ ='; completed by derivation",
                                  c_level))
 
     limits = _limits(solution)
     c_lim = certify_zero(log, "omega(t) -> (+-p/d, 0) as t -> +-oo (tanh -> +-1, sech -> 0)", "omegas",
                          [limits[1][0] - p / d, limits[1][1], limits[-1][0] + p / d, limits[-1][1]], PD_DOMAIN)
-    c_lim_text = certify_zero(log, "text: the limit angular velocity is -+a as t -> +-oo", "omegas (text)",
+    c_lim_text = certify_zero(log, "text: the limit angular velocity is $mp a$ as t -> +-oo", "omegas (text)",
                               [limits[1][0] + p / d, limits[-1][0] - p / d], PD_DOMAIN, expect=Outcome.FAIL)
     result.formula("limits", "omegas", "Limit steady rotations about $(1,0,0)$",
                    r"\lim_{t\to\pm\infty}\omega(t)=\left(\pm\frac{p}{d},\,0\right)", c_lim)
     result.errata.append(erratum(paper.LIMIT_TEXT, "corrected",
                                  r"t\to\pm\infty:\ \omega_1\to\pm a",
-                                 "the text's -+a contradicts the formula omegas (omega1 = a tanh t)",
+                                 "the text's $mp a$ contradicts the formula omegas (omega1 = a tanh t)",
                                  c_lim, c_lim_text))
 
     # 4. residue of A(t) at t = i pi/2
     A = poisson_matrix(solution[w1], solution[w2])
     A0 = A.applyfunc(residue_at_i_pi_half)
-    c_am2 = certify_zero(log, "residue of A(t) at t = i pi/2 is eq:am2", paper.AM2.label,
+    c_am2 = certify_zero(log, "residue of $A(t)$ at $t = i pi/2$ is eq:am2", paper.AM2.label,
                          list(A0 - paper.AM2_MATRIX), PD_DOMAIN)
     c_res_num = _laurent_limit(log, A, A0)
     lam_poly = sp.expand((A0 - lam * sp.eye(3)).det())
-    c_char = certify_zero(log, "det(A0 - lambda) = -(lambda^3 - p^2 lambda): eigenvalues 0, +-p", "eq:ro",
+    c_char = certify_zero(log, "$det(A0 - lam) = -(lam^3 - p^2 lam)$: eigenvalues $0$, +-p", "eq:ro",
                           lam_poly + lam**3 - p**2 * lam, PD_DOMAIN)
     result.formula("A0", "eq:am2, eq:ro", "Residue of $A(t)$ at $t_0=i\\pi/2$ and its eigenvalues",
                    r"A_0=" + latex(A0.subs(c, sp.Symbol(r"\sqrt{d^2+1}"))) + r",\quad \det(A_0-\lambda)="
@@ -238,7 +238,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     # 5. per-p table: the residue eigenvalues for each integer p <= pmax
     per_p = []
     for p_value in options.p_values():
-        cert = certify_zero(log, f"p = {p_value}: det(A0 - lambda) = -lambda (lambda - {p_value})(lambda + {p_value})",
+        cert = certify_zero(log, f"$p = {p_value}$: $det(A0 - lam) = -lam (lam - {p_value})(lam + {p_value})$",
                             "eq:ro", _expanded_det(A0.subs(p, p_value) - lam * sp.eye(3))
                             + lam * (lam - p_value) * (lam + p_value), Domain("Q(d)[c]/(c^2-d^2-1)", (C_EXT,)))
         per_p.append({"p": p_value, "parity": "odd" if p_value % 2 else "even",
@@ -247,8 +247,8 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
 
     # 5. the inverse map (I11, I22, I23) -> (p, d), emitted for special_case_parameters
     p_of_inertia = -I22 * d / I23
-    c_inverse = certify_zero(log, "d^2 = I11/I22 - 1 and p = -I22 d/I23 invert the substitution I11 = I22 (d^2+1), "
-                             "I23 = -I22 d/p", "eq:necc1", [(I11 / I22 - 1).subs(SUBSTITUTION) - d**2,
+    c_inverse = certify_zero(log, "$d^2 = I11/I22 - 1$ and $p = -I22 d/I23$ invert the substitution $I11 = I22 (d^2+1)$, "
+                             "$I23 = -I22 d/p$", "eq:necc1", [(I11 / I22 - 1).subs(SUBSTITUTION) - d**2,
                                                            p_of_inertia.subs(SUBSTITUTION) - p], Domain("Q(p,d,I22)"))
     tanh_t, sech_t = sp.tanh(t), sp.sech(t)
     emit = [Emitted("omega", (t, p, d), ((T, tanh_t), (S, sech_t), (c, sp.sqrt(d**2 + 1))),

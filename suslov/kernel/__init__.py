@@ -1,7 +1,7 @@
 """Numerical machinery of the generated module that is not a formula.
 
 The formulas themselves are emitted by the build into ``generated/suslov_formulas.py``;
-what lives here is the code every formula shares (DESIGN.md, "Generated outputs"):
+what lives here is the code every formula shares (docs/design.md, "Generated outputs"):
 
 * :mod:`.validate`   argument checks with messages that name the field, the value and why;
 * :mod:`.contexts`   one formula, several number contexts (float64, mpmath, and any object

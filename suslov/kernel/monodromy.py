@@ -197,7 +197,7 @@ def decide_group(mono: Monodromy, exact_trivial_at_poles: bool = False, exact_de
         mono.verdict, mono.liouvillian = "unknown", None
         return mono
     in_so3 = all(_contains(m.transpose() * m, I) and (m.det() - 1).contains(0) for m in M.values())
-    certs.append(("every monodromy matrix lies in SO(3, C) within its ball (M^T M contains I, det M contains 1)",
+    certs.append(("every monodromy matrix lies in SO(3, C) within its ball ($M^T M$ contains $Id$, $det(M)$ contains 1)",
                   "pass" if in_so3 else "fail", f"largest radius {mono.radius:.2e}"))
     product = M[RELATION[0]] * M[RELATION[1]] * M[RELATION[2]]
     others = [order for order in itertools.permutations(RELATION) if order != RELATION]
@@ -208,7 +208,7 @@ def decide_group(mono: Monodromy, exact_trivial_at_poles: bool = False, exact_de
                    "check)"), relation, f"{excluded} of the 5 other orders excluded by the balls"))
     generators = [M["x=0"], M["x=i"], M["x=-i"]]
     infinite = max((infinite_order(m) for m in generators), key=["fail", "unknown", "pass"].index)
-    certs.append(("a generator has an eigenvalue of modulus != 1: an element of infinite order, the group is not finite",
+    certs.append(("a generator has an eigenvalue of modulus other than 1: an element of infinite order, the group is not finite",
                   infinite, f"tr M(x=0) - 1 = {(M['x=0'].trace() - 1).str(8)}"))
     # candidates: the generators and their pairwise products (a square of a generator may be I, as for
     # I13 = 0 and half-integer p, where M(+-i) has eigenvalues 1, -1, -1)
@@ -225,7 +225,7 @@ def decide_group(mono: Monodromy, exact_trivial_at_poles: bool = False, exact_de
                 break
         if commutator == "pass":
             break
-    certs.append(("a commutator has trace != 3 (not unipotent): the group is in no Borel subgroup (irreducible)",
+    certs.append(("a commutator has a trace other than 3 (not unipotent): the group is in no Borel subgroup (irreducible)",
                   commutator, ""))
     squares = "unknown"
     for A in elements:

@@ -1,4 +1,4 @@
-"""The simulator's output directories (DESIGN.md, "Scenes"): all of a run's files or none.
+"""The simulator's output directories (docs/design.md, "Scenes"): all of a run's files or none.
 
 Files go into a staging directory beside ``--out`` and are exchanged into place only when
 everything succeeded (:mod:`suslov.outdir`: crash-safe at every instant, stale staging of dead

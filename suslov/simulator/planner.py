@@ -1,4 +1,4 @@
-"""Turn a scene's effects into the smallest set of computations: a declarative effect graph (DESIGN.md, "Scenes").
+"""Turn a scene's effects into the smallest set of computations: a declarative effect graph (docs/design.md, "Scenes").
 
 Each effect has *providers*, in order of preference; a provider is an engine step with the
 effects it needs and the condition under which it applies.  The plan is the minimal subgraph

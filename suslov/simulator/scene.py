@@ -1,4 +1,4 @@
-"""Scene files (TOML): what body, which motion, which window, which effects (DESIGN.md, "Scenes").
+"""Scene files (TOML): what body, which motion, which window, which effects (docs/design.md, "Scenes").
 
 A scene is declarative: it names the effects wanted, never the method.  Schema::
 

@@ -5,12 +5,16 @@ round-trips exactly and is byte-identical whatever executor computed it); ``resu
 the same table when pyarrow is importable.  Figures (paper section 5.1: the scattering angle over
 a family of bodies): ``map`` draws each scalar effect over the sweep's two varying fields (at the
 first energy; and the energy spread when there are several), ``histogram`` its distribution.
+Points that are no body or no scattering motion (the equilibrium ``I13 = I23 = 0``) are drawn
+hatched as *undefined*, apart from the white *unknown* cells; colours keep distinct lightness, so
+the maps read in grey print; the title is wrapped inside the canvas (constrained layout).
 """
 from __future__ import annotations
 
 import csv
 import json
 import math
+import textwrap
 
 import numpy as np
 
@@ -74,12 +78,35 @@ def _first_energy(scene, values: np.ndarray) -> np.ndarray:
     return values[::scene.sweep.energies]
 
 
-def draw_map(scene, table: dict, staging, formats) -> list[str]:
-    return _save(map_figure(scene, table), "map", staging, formats)
+# two classes with distinct lightness (dark blue, light yellow: told apart in grey print too)
+GALOIS_COLOURS = ("#1f3b73", "#f2c14e")
+UNDEFINED = dict(facecolor="0.85", edgecolor="0.25", hatch="///", linewidth=0.0)
+
+
+def _cells(centres: np.ndarray) -> np.ndarray:
+    """Edges of the cells around ``centres`` (``pcolormesh(shading="nearest")``'s cells)."""
+    if centres.size == 1:
+        return np.array([centres[0] - 0.5, centres[0] + 0.5])
+    mid = (centres[1:] + centres[:-1]) / 2
+    return np.concatenate([[2 * centres[0] - mid[0]], mid, [2 * centres[-1] - mid[-1]]])
+
+
+def _mark_undefined(ax, x, y, undefined) -> bool:
+    """Hatch the cells of points that are no body or no scattering motion (the equilibrium I13 = I23 = 0):
+    undefined there, not "unknown"."""
+    from matplotlib.patches import Rectangle
+    xe, ye = _cells(x), _cells(y)
+    for j, i in zip(*np.nonzero(undefined)):
+        ax.add_patch(Rectangle((xe[i], ye[j]), xe[i + 1] - xe[i], ye[j + 1] - ye[j], label="_undefined", **UNDEFINED))
+    if undefined.any():
+        ax.legend(handles=[Rectangle((0, 0), 1, 1, **UNDEFINED)], labels=["undefined (equilibrium, not a body)"],
+                  loc="upper right", fontsize=7, framealpha=0.9)
+    return bool(undefined.any())
 
 
 def map_figure(scene, table: dict):
-    """The ``map`` figure (a scalar effect over the sweep's two varying fields), not saved."""
+    """The ``map`` figure (a matplotlib Figure): each scalar effect over the two varying fields, refused
+    points hatched as undefined, the title wrapped inside the canvas (constrained layout)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -92,9 +119,11 @@ def map_figure(scene, table: dict):
     x = np.unique(_first_energy(scene, np.array(table[xname])))
     y = np.unique(_first_energy(scene, np.array(table[yname])))
     panels = [n for n in SCALARS if n in table]
-    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.4), squeeze=False)
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.8), squeeze=False, layout="constrained")
     xi = np.searchsorted(x, _first_energy(scene, np.array(table[xname])))
     yi = np.searchsorted(y, _first_energy(scene, np.array(table[yname])))
+    undefined = np.zeros((len(y), len(x)), dtype=bool)
+    undefined[yi, xi] = [bool(e) for e in _first_energy(scene, np.array(table.get("error", [""] * len(table[xname]))))]
     for ax, name in zip(axes[0], panels):
         grid = np.full((len(y), len(x)), np.nan)
         grid[yi, xi] = _first_energy(scene, np.array(table[name], dtype=float))
@@ -106,22 +135,27 @@ def map_figure(scene, table: dict):
             finite = grid[np.isfinite(grid)]
             norm = LogNorm(finite.min(), max(finite.max(), 10 * SPREAD_FLOOR)) if finite.size else None
             label += f"; 0 drawn at {SPREAD_FLOOR:g}"
-        if name == "galois_group":   # three colours: solvable, not solvable, unknown (masked: white)
+        if name == "galois_group":   # two classes; unknown masked (white), undefined hatched
             from matplotlib.colors import BoundaryNorm, ListedColormap
             mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(grid), shading="nearest",
-                                 cmap=ListedColormap(["#4c9be8", "#d1495b"]), norm=BoundaryNorm([-0.5, 0.5, 1.5], 2))
+                                 cmap=ListedColormap(GALOIS_COLOURS), norm=BoundaryNorm([-0.5, 0.5, 1.5], 2))
             fig.colorbar(mesh, ax=ax, ticks=[0, 1], label="0 reducible (Liouvillian), 1 SO(3,C); white: unknown")
-        else:
+        else:   # viridis: lightness rises monotonically, so the scale reads in grey
             mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(grid), shading="nearest", norm=norm, cmap="viridis")
             fig.colorbar(mesh, ax=ax, label=label)
+        _mark_undefined(ax, x, y, undefined)
         ax.set_xlabel(AXIS_LABELS.get(xname, xname))
         ax.set_ylabel(AXIS_LABELS.get(yname, yname))
         title = LABELS[name].rsplit(" (", 1)[0]
         ax.set_title(title + (f" (energy {table['energy'][0]:g})" if sw.energies > 1 and name != "energy_spread"
                               else ""), fontsize=10)
-    fig.suptitle(scene.title or scene.name, fontsize=11)
-    fig.tight_layout()
+    # about 11 characters of 11 pt text per inch: wrap the scene's title to the canvas
+    fig.suptitle(textwrap.fill(scene.title or scene.name, width=int(11 * fig.get_figwidth())), fontsize=11)
     return fig
+
+
+def draw_map(scene, table: dict, staging, formats) -> list[str]:
+    return _save(map_figure(scene, table), "map", staging, formats)
 
 
 def draw_histogram(scene, table: dict, staging, formats) -> list[str]:
@@ -135,7 +169,7 @@ def histogram_figure(scene, table: dict):
     import matplotlib.pyplot as plt
 
     panels = [n for n in SCALARS if n in table]
-    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.0), squeeze=False)
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.4), squeeze=False, layout="constrained")
     for ax, name in zip(axes[0], panels):
         values = np.array(table[name], dtype=float)
         values = values[np.isfinite(values)]
@@ -144,8 +178,7 @@ def histogram_figure(scene, table: dict):
         ax.set_xlabel(LABELS[name])
         ax.set_ylabel("points")
         ax.legend()
-    fig.suptitle(scene.title or scene.name, fontsize=11)
-    fig.tight_layout()
+    fig.suptitle(textwrap.fill(scene.title or scene.name, width=int(11 * fig.get_figwidth())), fontsize=11)
     return fig
 
 
