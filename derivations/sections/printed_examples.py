@@ -30,7 +30,7 @@ from derivations.sections.meromorphic_ring import Basis
 
 t_, d_, c_ = sp.symbols("t d c")
 C_EXT = Extension(c_, d_**2 + 1, "c = +-sqrt(d^2+1)")
-DOMAIN = Domain("Q(d)(x)[c, C]/(c^2-d^2-1, C^2+Sn^2-1), x = e^t, C + i Sn = e^(i p t/d)", (C_EXT, PHASE))
+DOMAIN = Domain("Q(d)(x)[c, C]/(c^2-d^2-1, C^2+Sn^2-1) with $x = exp(t)$, $C + i Sn = exp(i p t/d)$", (C_EXT, PHASE))
 
 
 class ExactOps:

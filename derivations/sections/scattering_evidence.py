@@ -54,7 +54,7 @@ def fast_rotation_certificate(log: CertificateLog) -> Certificate:
         "the ss solution integrated from $t = -oo$ to $+oo$ gives $G1(0) = -cos(pi p/2)/cosh(pi p/(2d))$ and "
         "$cos(Deltapsi) = -G1(oo) = 2 cos(pi p/2)^2/cosh(pi p/(2 d))^2 - 1$ (to $1e-30$)", "Theorem 5.2",
         f"Frobenius series at $t = pm(oo)$ and Taylor steps in mpmath at {GRID_DPS} digits (evidence, not proof: "
-        "ball enclosures of this column cost 16 s even at 10 digits, 40 percent of a cold build; $d = 0.5, 2, 50$ are "
+        "ball enclosures of this column cost 16 s even at 10 digits, 40 percent of a cold build; $d = 0.5$, $2$, $50$ are "
         "enclosed)",
         Outcome.PASS if ok else Outcome.FAIL, elapsed[0], points, detail))
 

@@ -100,7 +100,7 @@ def _laurent_limit(log: CertificateLog, A: sp.Matrix, A0: sp.Matrix):
         log, "eps A(i pi/2 + eps) -> A0: tanh(i pi/2 + eps) = coth eps, sech(i pi/2 + eps) = -i csch eps "
              "(y = e^eps), eps coth eps = 1 + eps^2/3 + O(eps^4), eps csch eps = 1 - eps^2/6 + O(eps^4) "
              "(exact Laurent series), A linear homogeneous in (tanh, sech) and A(1, -i) = A0", paper.AM2.label,
-        identities, Domain("Q(p,d,y,eps,lambda)[c]/(c^2-d^2-1)", (C_EXT,)))
+        identities, Domain("Q(p,d,y,eps,lam)[c]/(c^2-d^2-1)", (C_EXT,)))
 
 
 def poisson_matrix(omega1, omega2) -> sp.Matrix:
