@@ -25,7 +25,7 @@ chains into ``omega`` (the body's own general solution, in the returned frame, e
 
 Why the rest stays evidence (issue 34): ``first_integral`` (the BLAS product and Horner pass of
 ``suslov.kernel.horner``, then a scaling by 2^(p e + E) that can amplify an underflow in the sum: its
-docstring's absolute 5e-324 does not cover g next to the subnormal range, so a proof needs a stated
+docstring's absolute 5e-324 may not cover g next to the subnormal range, so a proof needs a stated
 domain first), ``gamma_basis`` (series coefficients from balls, a double-double phase, mpmath beyond
 it: three branches, each needing its own proof) and ``general_scattering_angle`` (four entries through
 the complex root of ``gauss_angle``) are not yet walked by :mod:`float_proofs`; the consistency checks
