@@ -2,10 +2,11 @@
 
 Side by side, in one run, on the committed generated module:
 
-* the proofs (``derivations.output.float_proofs``: the emitted ``_omega`` / ``_scattering_angle`` on error
+* the proofs (``derivations.output.float_proofs``: the emitted ``_omega`` / ``_omega_general`` / ``_scattering_angle`` on error
   balls over their boxes, plus the bit-for-bit check of the public function against the analysed composition);
 * the sampled round-trip checks they replaced (float64 against the mpmath twin at 40 digits at the old
-  seeded points; the loops of the old ``float_paths.check_omega`` / ``check_scattering_angle``).
+  seeded points; the loops of the old ``float_paths.check_omega`` / ``check_omega_general`` /
+  ``check_scattering_angle``).
 
 The share is taken against a cold default build on both cores, ~40 s (``bench/results/build.md``: 40.1 s
 at pmax 15, all cores); target: the proofs under 20% of it.
@@ -70,9 +71,28 @@ def sampled_angle():
     return worst
 
 
+def sampled_omega_general():
+    """The old sampled check: 8 bodies x 2 branches x 9 t against omega_general_mp at 40 digits."""
+    rng = np.random.default_rng(1202)
+    worst = 0.0
+    for _ in range(8):
+        I11, I22 = (float(v) for v in rng.uniform(0.2, 5, 2))
+        I13, I23 = (float(v) for v in rng.uniform(-2, 2, 2))
+        for branch in (1, -1):
+            w1, w2 = sf.omega_general(np.array(HARD_T[1:-1]), I11, I22, I13, I23, branch)
+            r = math.sqrt(I11 * I22)
+            D = I13**2 * I22 + I23**2 * I11
+            bound = 1e-15 * (I11 * I22 * abs(I23) + I22 * abs(I13) * r + I11 * I22 * abs(I13) + I11 * abs(I23) * r) / D
+            for i, t in enumerate(HARD_T[1:-1]):
+                e1, e2 = sf.omega_general_mp(t, I11, I22, I13, I23, branch, dps=40)
+                worst = max(worst, float(abs(w1[i] - e1) / bound), float(abs(w2[i] - e2) / bound))
+    return worst
+
+
 def main():
     rows = []
-    for name, sampled in (("omega", sampled_omega), ("scattering_angle", sampled_angle)):
+    for name, sampled in (("omega", sampled_omega), ("omega_general", sampled_omega_general),
+                          ("scattering_angle", sampled_angle)):
         proof = float_proofs.PROOFS[name](sf)
         proof_seconds = median_seconds(lambda name=name: float_proofs.certificate(CertificateLog(derivation="bench"),
                                                                                    sf, name), 5)

@@ -28,7 +28,7 @@ def proofs():
 def test_proofs_pass_within_the_stated_bounds(proofs):
     for name, proof in proofs.items():
         assert proof.bound <= fp.STATED[name], proof
-        assert proof.boxes > 100
+        assert proof.boxes >= 64
 
 
 def test_omega_bound_holds_at_hard_points(proofs):

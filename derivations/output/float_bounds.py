@@ -166,7 +166,7 @@ class FE:
         propagated = ma * other.e + mb * self.e + self.e * other.e
         relative = self.r + other.r + self.r * other.r
         absolute = other.a * ma * (1 + self.r) + self.a * mb * (1 + other.r) + self.a * other.a
-        exact = (other.e == 0 and _is_power_of_two(other.v)) or (self.e == 0 and _is_power_of_two(self.v))
+        exact = _exact_scaling(self, other)
         if self.sign and other.sign:     # interval product from the ends: a mid-radius product loses the lower end
             ends = self.low * other.low
             value = (ends.union(ma * mb)) * (self.sign * other.sign)
@@ -197,11 +197,21 @@ class FE:
             absolute = (self.a + mq * other.a) / floor
         else:
             relative, absolute = arb(0), propagated
-        exact = other.e == 0 and _is_power_of_two(other.v)
+        # a division by a power of two is exact unless the quotient may be subnormal (it loses bits there)
+        exact = other.e == 0 and _is_power_of_two(other.v) and _lower_abs(quotient) > TINY
         return self._rounded(quotient, propagated, relative, absolute, exact_op=exact, sign=self.sign * other.sign)
 
     def __rtruediv__(self, other):
         return FE.lift(other) / self
+
+
+def _exact_scaling(a: "FE", b: "FE") -> bool:
+    """A product by an exact 2^k: exact for k >= 0 (overflow is outside every domain here), and for k < 0
+    unless the product may be subnormal (it loses bits there)."""
+    for constant, other in ((b, a), (a, b)):
+        if constant.e == 0 and _is_power_of_two(constant.v):
+            return constant.low >= 1 or constant.low * other.low > TINY
+    return False
 
 
 def _is_power_of_two(x: arb) -> bool:

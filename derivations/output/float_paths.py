@@ -16,11 +16,21 @@ within 1e-17 of the exact ones is the ball's own bound; the float-twin compariso
 evaluation (series, phase reduction, tanh/sech).  The coefficients, the Fourier conversion and the
 normalisation are checked by a route sharing none of them: for every p, ``gamma_basis_mp``
 against the certified numerators evaluated *exactly* in Q at two points with x = e^t, d and
-c = sqrt(d^2+1) rational (:func:`exact_basis_values`), only the phase e^{i(p/d)t} in mpmath.
+c = sqrt(d^2+1) rational (:func:`exact_basis_values`), the phase e^{i(p/d)t} enclosed in a ball:
+a certificate for those two points.
 
 Also checked: the rows of ``gamma_basis`` form a rotation (det +1), ``special_case_parameters``
 chains into ``omega`` (the body's own general solution, in the returned frame, equals
 ``omega(t, p, d)`` with p > 0), and ``meromorphy`` agrees with ``kovalevskaya_exponents``.
+
+Why the rest stays evidence (issue 34): ``first_integral`` (the BLAS product and Horner pass of
+``suslov.kernel.horner``, then a scaling by 2^(p e + E) that can amplify an underflow in the sum: its
+docstring's absolute 5e-324 may not cover g next to the subnormal range, so a proof needs a stated
+domain first), ``gamma_basis`` (series coefficients from balls, a double-double phase, mpmath beyond
+it: three branches, each needing its own proof) and ``general_scattering_angle`` (four entries through
+the complex root of ``gauss_angle``) are not yet walked by :mod:`float_proofs`; the consistency checks
+of ``special_case_parameters``, ``meromorphy`` and ``kovalevskaya_exponents`` compare float decisions
+with a tolerance and LAPACK eigenvalues, for which no error bound is stated to prove.
 """
 from __future__ import annotations
 

@@ -215,17 +215,13 @@ def certificate(log: CertificateLog, module, name: str) -> Certificate:
 
 
 def general_boxes() -> list:
-    """Scaled entries (the largest magnitude is 1): I11, I22 in [1e-3, 1], one of |I13|, |I23| in [1e-3, 1],
-    the other in [-1, 1]; relative bounds need no narrow boxes, only divisors kept away from 0."""
-    positive = [box(10.0 ** (-3 + k), 10.0 ** (-2 + k)) for k in range(3)]
-    off = [box(10.0 ** (-3 + k), 10.0 ** (-2 + k)) for k in range(3)]
-    off = off + [-b for b in off]
-    anything = [box(-1.0, 1.0)]
-    out = []
-    for I11 in positive:
-        for I22 in positive:
-            out += [(I11, I22, a, b) for a in off for b in anything] + [(I11, I22, a, b) for a in anything for b in off]
-    return out
+    """Scaled entries (the largest magnitude is 1): I11, I22 in [1e-3, 1], one of |I13|, |I23| in [1e-3, 1], the
+    other in [-1, 1].  The bound is in relative and magnitude forms, which do not depend on a box's width
+    (narrower boxes give the same 53 u): the boxes only keep the divisor D away from 0, by its exact lower
+    bound I11 I23^2 + I13^2 I22 >= 1e-9."""
+    positive, anything = box(1e-3, 1.0), box(-1.0, 1.0)
+    off = (box(1e-3, 1.0), -box(1e-3, 1.0))
+    return ([(positive, positive, a, anything) for a in off] + [(positive, positive, anything, b) for b in off])
 
 
 def prove_omega_general(module) -> Proof:
