@@ -237,12 +237,15 @@ def check_basis_mp_exactly(log: CertificateLog, module, p: int, core) -> Certifi
                 ok_sigma = False
         ok = ok_sigma and worst < flint.arb(10) ** -40
     return log.record(Certificate(
-        f"p = {p}: gamma_basis_mp equals the certified numerators evaluated exactly at x = e^t = 2/3, "
-        "d = 3/4 and x = 5/4, d = 15/8 (c rational), to 1e-40, with the certified sigma", "round trip",
-        "ball enclosure (python-flint arb, 400 bits) of the exact rows: rationals exact, the phase e^{i(p/d)t} and "
-        "the input's rounding |t~ - log x| |omega| enclosed; 2 points", Outcome.PASS if ok else Outcome.FAIL,
-        elapsed[0], len(EXACT_POINTS), f"{len(EXACT_POINTS)} points x 9 entries; worst distance < 1e-40" if ok else
-        f"worst distance {worst} or sigma differs", measured=f"worst distance = {float(worst.upper()):.3g}"))
+        f"$p = {p}$: gamma_basis_mp equals the certified numerators evaluated exactly at $x = 2/3$, "
+        "$d = 3/4$ and $x = 5/4$, $d = 15/8$ ($x = exp(t)$; $c$ rational), to $10^(-40)$, with the certified "
+        "$sigma$", "round trip",
+        "ball enclosure (python-flint arb, 400 bits) of the exact rows: rationals exact, the phase "
+        "$exp(i (p/d) t)$ and the rounding of the input $t$ (times $abs(omega)$) enclosed; 2 points",
+        Outcome.PASS if ok else Outcome.FAIL, elapsed[0], len(EXACT_POINTS),
+        f"{len(EXACT_POINTS)} points, 9 entries each; worst distance below $10^(-40)$" if ok else
+        f"worst distance ${float(worst.upper()):.3g}$ or sigma differs",
+        measured=f"worst distance = {float(worst.upper()):.3g}"))
 
 
 def check_general_scattering_angle(log: CertificateLog, module) -> list:

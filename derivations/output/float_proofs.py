@@ -96,8 +96,9 @@ def prove_omega(module) -> Proof:
     bound_u = math.ceil(_in_u(worst))
     if not floor < OMEGA_FLOOR:
         raise BoundFailure(f"omega: absolute part {floor} of the bound exceeds {OMEGA_FLOOR} (|p|/d) c")
-    return Proof("omega", bound_u, boxes, "all t, d in [1e-3, 1e3], p != 0 (no overflow)",
-                 f"|omega_i~ - omega_i| <= {bound_u} u |omega_i| + 1e-300 (|p|/d) sqrt(d^2+1)")
+    return Proof("omega", bound_u, boxes, "all $t$, $d$ from $10^(-3)$ to $10^3$, $p != 0$ (no overflow)",
+                 f"the computed $omega_i$ is within ${bound_u} u abs(omega_i) + 10^(-300) (abs(p)/d) sqrt(d^2 + 1)$ of "
+                 "the exact one")
 
 
 def half_pi_parts(r: FE) -> tuple:
@@ -141,20 +142,22 @@ def prove_scattering_angle(module) -> Proof:
     finally:
         ctx.prec = saved
     bound_u = math.ceil(_in_u(worst))
-    return Proof("scattering_angle", bound_u, boxes, "all p, d > 0 with pi |p|/(2d) <= 1024",
-                 f"|Delta psi~ - Delta psi| <= {bound_u} u (absolute)")
+    return Proof("scattering_angle", bound_u, boxes, "all $p$ and $d > 0$ with $pi abs(p)/(2 d) <= 1024$",
+                 f"the computed $Deltapsi$ is within ${bound_u} u$ (absolute) of the exact one")
 
 
 PROOFS = {"omega": prove_omega, "scattering_angle": prove_scattering_angle}   # omega_general added below
-CLAIMS = {"omega": "omega: float64 within 5e-15 |omega_i| + 1e-300 (|p|/d) sqrt(d^2+1) of the exact omega",
-          "scattering_angle": "scattering_angle: float64 within absolute 1.5e-14 of the exact Delta psi",
-          "omega_general": "omega_general: float64 within 6e-15 B + 1e-300 of the exact omega, B = (I11 I22 |I23| + "
-                           "I22 |I13| r + I11 I22 |I13| + I11 |I23| r)/D"}
+CLAIMS = {"omega": "omega: float64 within $5 10^(-15) abs(omega_i) + 10^(-300) (abs(p)/d) sqrt(d^2 + 1)$ of the exact "
+                   "$omega$",
+          "scattering_angle": "scattering_angle: float64 within absolute $1.5 10^(-14)$ of the exact $Deltapsi$",
+          "omega_general": "omega_general: float64 within $6 10^(-15) B + 10^(-300)$ of the exact $omega$, "
+                           "$B = (I11 I22 abs(I23) + I22 abs(I13) r + I11 I22 abs(I13) + I11 abs(I23) r)/D$"}
 
 
 def method(proof: Proof) -> str:
-    return METHOD.format(n=proof.boxes) + (f" (domain: {proof.domain}; libm calls within 4 ulp, sqrt correctly "
-                                           "rounded, fl(a op b) = (a op b)(1 + e), |e| <= 2^-53)")
+    return METHOD.format(n=proof.boxes) + (f" (domain: {proof.domain}; libm calls within 4 ulp, square roots "
+                                           "correctly rounded, every operation rounded as $fl(x) = x (1 + e)$ with "
+                                           "$abs(e) <= 2^(-53)$)")
 
 
 MODEL_P = np.array([1.0, 3.0, 2.0, 0.5, 2.5, 1 + 1e-13, 3 - 1e-13, 2 + 1e-13, 7.3, -2.7, 1e-300, 1e6 + 0.5])
@@ -198,8 +201,8 @@ def certificate(log: CertificateLog, module, name: str) -> Certificate:
         try:
             proof = PROOFS[name](module)
             ok = proof.bound <= STATED[name]
-            detail = f"{proof.statement}, {proof.bound_u} u = {proof.bound:.3g} <= {STATED[name]:g}" if ok else (
-                f"proven only {proof.statement} = {proof.bound:.3g} > {STATED[name]:g}")
+            detail = (f"{proof.statement}, ${proof.bound_u} u = {proof.bound:.3g}$, at most ${STATED[name]:g}$" if ok
+                      else f"proven only: {proof.statement}, ${proof.bound:.3g}$, above ${STATED[name]:g}$")
             public, core = modelled(module, name)
             same = public.shape == core.shape and np.array_equal(public, core)
             detail += (f"; the public function gives the analysed composition's bits at {core.size} points" if same
@@ -246,8 +249,9 @@ def prove_omega_general(module) -> Proof:
     if not floor < OMEGA_FLOOR:
         raise BoundFailure(f"omega_general: absolute part {floor} of the bound exceeds {OMEGA_FLOOR}")
     return Proof("omega_general", bound_u, boxes,
-                 "all t, entries scaled by the largest magnitude: I11, I22 >= 1e-3, max(|I13|, |I23|) >= 1e-3",
-                 f"|omega_i~ - omega_i| <= {bound_u} u B + 1e-300")
+                 "all $t$, entries scaled by the largest magnitude: $I11 >= 10^(-3)$, $I22 >= 10^(-3)$, "
+                 "$Max(abs(I13), abs(I23)) >= 10^(-3)$",
+                 f"the computed $omega_i$ is within ${bound_u} u B + 10^(-300)$ of the exact one")
 
 
 PROOFS["omega_general"] = prove_omega_general

@@ -192,8 +192,8 @@ def run(log: CertificateLog, options) -> DerivationResult:
                          "eq:o12", ode_residuals(RING, solution, field), RING.domain)
     # second exact route (was an mpmath.diff spot check): x = e^t makes omega rational, d/dt = x d/dx
     numeric_certs = [certify_ode_in_exp(
-        log, "derived omega(t) solves the reduced Euler equations, both signs of r, in x = e^t "
-             "(tanh t = (x^2-1)/(x^2+1), sech t = 2x/(x^2+1), d/dt = x d/dx)", "eq:o12",
+        log, "derived $omega(t)$ solves the reduced Euler equations, both signs of $r$, "
+             "in $x = exp(t)$ ($tanh(t) = (x^2 - 1)/(x^2 + 1)$, $sech(t) = 2 x/(x^2 + 1)$, and $d/dt$ is $x$ times $d/dx$)", "eq:o12",
         [solution[w1], solution[w2]], [field[w1], field[w2]], [w1, w2],
         "Q(I11,I22,I13,I23)(x)[r]/(r^2-I11 I22)", (R_EXT,))]
     D = I13**2 * I22 + I23**2 * I11

@@ -124,14 +124,16 @@ def compare_printed_examples(log: CertificateLog, result: DerivationResult, base
             continue
         P, ours = printed_rows(p), our_rows(bases[p])
         c_sol = certify_zero(
-            log, f"printed p = {p} example: the three rows solve the Poisson equations (x = e^t, C + i Sn = e^(ipt/d))",
+            log, f"printed $p = {p}$ example: the three rows solve the Poisson equations ($x = exp(t)$, "
+                 "$C + i Sn = exp(i p t/d)$)",
             printed.label, poisson_residuals(P, p), DOMAIN)
         # ours(t) printed(t)^T is constant without a further test: both bases' rows solve row' = row B with
         # the same skew B (the printed ones by c_sol, ours by the basis certificates), and
         # (ours P^T)' = ours (B + B^T) P^T = 0
         c_rel = certify_zero(
-            log, f"printed p = {p} example: orthonormal and gamma^(1) equal to ours; with c_sol and our basis's "
-            "certificates, ours(t) printed(t)^T is a constant orthogonal matrix", printed.label,
+            log, f"printed $p = {p}$ example: orthonormal and $gammaI$ equal to ours; with the solution certificate "
+            "and our basis's, our basis times the transposed printed one is a constant orthogonal matrix",
+            printed.label,
             list(P * P.T - sp.eye(3)) + list(P.row(0) - ours.row(0)), DOMAIN)
         d0 = mpmath.mpf("0.7")
         R = mpmath.matrix(basis_mp(bases[p], mpmath.mpf("0.31"), d0)) * mpmath.matrix(
@@ -139,5 +141,5 @@ def compare_printed_examples(log: CertificateLog, result: DerivationResult, base
         handed = "right-handed (det +1), like ours" if mpmath.det(R) > 0 else "left-handed (det -1); ours is right-handed"
         result.errata.append(erratum(
             printed, "confirmed", r"\text{our basis }=R\cdot\text{printed},\ R\text{ constant orthogonal}",
-            f"the printed rows solve eq:ps and are orthonormal; gamma^(1) coincides with ours, gamma^(2), gamma^(3) "
+            f"the printed rows solve eq:ps and are orthonormal; $gammaI$ coincides with ours, $gammaII$ and $gammaIII$ "
             f"differ by a constant rotation in their plane; the printed basis is {handed}", c_sol, c_rel))

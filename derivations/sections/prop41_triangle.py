@@ -85,27 +85,31 @@ def triangle_errata(log: CertificateLog, root: sp.Symbol, domain, field_domain, 
     a_part, b_part = split_parts()
     spread = (I22 - I33) ** 2 + 4 * printed_root     # (J2 - J3)^2, printed_root = the I23^2 with sign -
     c_split = certify_zero(
-        log, "for the proof's I23^2 with sign -, I11^2 - (J2-J3)^2 = A + B s with A = -(T + 2 I22 p^2/(I11-I22)), "
-        "B = 2 I22 p/(I11-I22), T = (I22+I33)^2 - I11^2, (J2-J3)^2 = (I22-I33)^2 + 4 I23^2", label,
+        log, "for the proof's $I23^2$ with the minus sign, $I11^2 - (J2 - J3)^2 = A + B s$ with "
+        "$A = -(T + 2 I22 p^2/(I11 - I22))$, $B = 2 I22 p/(I11 - I22)$, $T = (I22 + I33)^2 - I11^2$, "
+        "$(J2 - J3)^2 = (I22 - I33)^2 + 4 I23^2$", label,
         (I11**2 - spread) - (a_part + b_part * root), domain)
     c_condition = certify_zero(
-        log, "(I11-I22)^2 (B^2 s^2 - A^2) = (I11-I22) (4 I22 p^2 (I11^2 - (I22-I33)^2) - (I11-I22) T^2); with A < 0 < B "
-        "(I11 > I22 > 0, I33 + I22 > I11, p > 0), A + B s > 0 iff the bracket is positive", label,
+        log, "$(I11 - I22)^2 (B^2 s^2 - A^2) = (I11 - I22) (4 I22 p^2 (I11^2 - (I22 - I33)^2) - (I11 - I22) T^2)$; "
+        "with $A < 0$ and $B > 0$ ($I11 > I22$, $I22 > 0$, $I33 + I22 > I11$, $p > 0$), $A + B s > 0$ if and only if "
+        "the bracket is positive", label,
         DELTA**2 * (b_part**2 * (p**2 + 4 * I33 * DELTA) - a_part**2) - DELTA * CONDITION, field_domain)
     with stopwatch() as elapsed:
         a, b, r = triangle_gap_parts(COUNTEREXAMPLE)
         sign = sign_of_surd(a, b, r)
         bracket = condition_value(COUNTEREXAMPLE)
     c_counter = log.record(Certificate(
-        "I11 = 11/10, I22 = 1, I33 = 2, p = 1, root with sign -: I11^2 - (J2-J3)^2 > 0", label,
-        "exact sign decision of a + b sqrt(r) in Q(sqrt(5)) (rational comparison a^2 vs b^2 r)",
+        "$I11 = 11/10$, $I22 = 1$, $I33 = 2$, $p = 1$, root with the minus sign: $I11^2 - (J2 - J3)^2 > 0$", label,
+        "exact sign decision of $a + b sqrt(r)$ with rational $a$, $b$, $r$ (the rational comparison of $a^2$ with "
+        "$b^2 r$)",
         Outcome.PASS if sign > 0 else Outcome.FAIL, elapsed[0], 1,
-        f"I11^2 - (J2-J3)^2 = {a} + {b} sqrt({r}) has sign {sign} (a^2 = {a * a}, b^2 r = {b * b * r}); "
-        f"the condition's bracket is {bracket}",
+        f"$I11^2 - (J2 - J3)^2 = {a} + {b} sqrt({r})$ has sign ${sign}$ ($a^2 = {a * a}$, $b^2 r = {b * b * r}$); "
+        f"the condition's bracket is ${bracket}$",
         expected=Outcome.FAIL))
     return erratum(
         PROP41_TRIANGLE, "corrected", CONDITION_LATEX,
-        "false in general: for I11 = 11/10, I22 = 1, I33 = 2, p = 1 the proof's root with sign - gives "
-        "I23^2 = 7 - 3 sqrt(5) and I11^2 - (J2-J3)^2 = -2779/100 + 12 sqrt(5) < 0; under the proof's assumptions it "
-        "holds exactly when the stated condition does. The proposition stays true (certified example bodies)",
+        "false in general: for $I11 = 11/10$, $I22 = 1$, $I33 = 2$, $p = 1$ the proof's root with the minus sign gives "
+        "$I23^2 = 7 - 3 sqrt(5)$ and $I11^2 - (J2 - J3)^2 = -2779/100 + 12 sqrt(5)$, which is negative; under the "
+        "proof's assumptions it holds exactly when the stated condition does. The proposition stays true (certified "
+        "example bodies)",
         c_counter, c_split, c_condition)

@@ -97,9 +97,10 @@ def _laurent_limit(log: CertificateLog, A: sp.Matrix, A0: sp.Matrix):
     identities += list(A.subs({T: lam_ * T, S: lam_ * S}, simultaneous=True) - lam_ * A)
     identities += list(A.subs({T: 1, S: -sp.I}, simultaneous=True) - A0)
     return certify_zero(
-        log, "eps A(i pi/2 + eps) -> A0: tanh(i pi/2 + eps) = coth eps, sech(i pi/2 + eps) = -i csch eps "
-             "(y = e^eps), eps coth eps = 1 + eps^2/3 + O(eps^4), eps csch eps = 1 - eps^2/6 + O(eps^4) "
-             "(exact Laurent series), A linear homogeneous in (tanh, sech) and A(1, -i) = A0", paper.AM2.label,
+        log, "$eps A(i pi/2 + eps)$ tends to $A0$: $tanh(i pi/2 + eps) = coth(eps)$, "
+             "$sech(i pi/2 + eps) = -i csch(eps)$ ($y = exp(eps)$), $eps coth(eps) = 1 + eps^2/3 + O(eps^4)$, "
+             "$eps csch(eps) = 1 - eps^2/6 + O(eps^4)$ (exact Laurent series), $A$ linear and homogeneous in "
+             "$(tanh, sech)$ and $A(1, -i) = A0$", paper.AM2.label,
         identities, Domain("Q(p,d,y,eps,lam)[c]/(c^2-d^2-1)", (C_EXT,)))
 
 
@@ -186,10 +187,10 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                          "omegas", ode_residuals(PD_RING, solution, sysfin), PD_RING.domain)
     # second exact route (was an mpmath.diff spot check): rational in x = e^t, d/dt = x d/dx
     numeric_certs = [certify_ode_in_exp(
-        log, "omega(t) solves eq:sysfin, both branches of c, in x = e^t (tanh t = (x^2-1)/(x^2+1), "
-             "sech t = 2x/(x^2+1), d/dt = x d/dx)", "omegas",
+        log, "$omega(t)$ solves eq:sysfin, both branches of $c$, "
+             "in $x = exp(t)$ ($tanh(t) = (x^2 - 1)/(x^2 + 1)$, $sech(t) = 2 x/(x^2 + 1)$, and $d/dt$ is $x$ times $d/dx$)", "omegas",
         [solution[w1], solution[w2]], [sysfin[w1], sysfin[w2]], [w1, w2], "Q(p,d)(x)[c]/(c^2-d^2-1)", (C_EXT,))]
-    c_form = certify_zero(log, "printed omegas form w1 = a tanh t, w2 = -a c sech t with a = p/d", "omegas",
+    c_form = certify_zero(log, "printed omegas form $w1 = a tanh t$, $w2 = -a c sech t$ with $a = p/d$", "omegas",
                           [solution[w1] - (p / d) * T, solution[w2] + (p / d) * c * S], PD_RING.domain)
     result.formula("omegas", "omegas", "Angular velocity ($a=p/d$, $c=\\sqrt{d^2+1}$)",
                    r"\omega_1(t)=\frac{p}{d}\tanh t,\quad \omega_2(t)=-\frac{p\sqrt{d^2+1}}{d}\operatorname{sech}t",
