@@ -92,7 +92,7 @@ MUTANTS = [
     ("runtime-careful-phase-swap", R + "basis.py",
      "cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))",
      "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))", "verify"),
-    ("runtime-careful-phase-digits", R + "basis.py", "with mpmath.workdps(30 + int(math.log10(size + 1))):",
+    ("runtime-careful-phase-digits", R + "basis.py", "with mpmath.workdps(30 + max(0, int(size) + 1)):",
      "with mpmath.workdps(15):", "verify"),
     ("runtime-kovalevskaya-fifth", R + "bodies.py", "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]",
      "verify"),
