@@ -22,6 +22,7 @@ not reject is *silent*; the table says so.  Equivalent mutants (no observable ch
 from __future__ import annotations
 
 import argparse
+import hashlib
 import os
 import shutil
 import subprocess
@@ -176,6 +177,16 @@ def working_tree_copy(target: Path) -> None:
             shutil.copyfile(source, target / name)
 
 
+def reseal(directory: Path) -> None:
+    """Rewrite the tree's manifest (SHA256SUMS) after a mutation: the mutant is then a consistent tree with a
+    wrong formula, which the round trip must reject (a tree changed after its build is refused earlier, by
+    the manifest, which would make every mutant of the emitted module trivially 'rejected')."""
+    manifest = directory / "SHA256SUMS"
+    names = [line.split("  ", 1)[1] for line in manifest.read_text(encoding="utf-8").splitlines()]
+    manifest.write_text("".join(f"{hashlib.sha256((directory / n).read_bytes()).hexdigest()}  {n}\n"
+                                for n in sorted(names)), encoding="utf-8")
+
+
 def detector_command(detector: str, tree: Path) -> list[str]:
     if detector == "build":
         return [sys.executable, "build_formulas.py", "--quiet", "--no-cache", "--out", str(tree.parent / "out")]
@@ -196,6 +207,8 @@ def run_mutant(mutant) -> dict:
             return {"id": ident, "file": path, "detector": detector, "outcome": "site not unique or missing",
                     "seconds": 0.0}
         (tree / path).write_text(text.replace(original, mutated), encoding="utf-8")
+        if path.startswith("generated/"):
+            reseal(tree / "generated")
         env = dict(os.environ, PYTHONPATH=str(tree), SUSLOV_NO_CACHE="1")
         start = time.perf_counter()
         done = subprocess.run(detector_command(detector, tree), cwd=tree, env=env, capture_output=True, text=True,
