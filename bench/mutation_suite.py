@@ -22,6 +22,7 @@ not reject is *silent*; the table says so.  Equivalent mutants (no observable ch
 from __future__ import annotations
 
 import argparse
+import hashlib
 import os
 import shutil
 import subprocess
@@ -92,7 +93,7 @@ MUTANTS = [
     ("runtime-careful-phase-swap", R + "basis.py",
      "cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))",
      "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))", "verify"),
-    ("runtime-careful-phase-digits", R + "basis.py", "with mpmath.workdps(30 + int(math.log10(size + 1))):",
+    ("runtime-careful-phase-digits", R + "basis.py", "with mpmath.workdps(30 + max(0, int(size) + 1)):",
      "with mpmath.workdps(15):", "verify"),
     ("runtime-kovalevskaya-fifth", R + "bodies.py", "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]",
      "verify"),
@@ -177,6 +178,16 @@ def working_tree_copy(target: Path) -> None:
             shutil.copyfile(source, target / name)
 
 
+def reseal(directory: Path) -> None:
+    """Rewrite the tree's manifest (SHA256SUMS) after a mutation: the mutant is then a consistent tree with a
+    wrong formula, which the round trip must reject (a tree changed after its build is refused earlier, by
+    the manifest, which would make every mutant of the emitted module trivially 'rejected')."""
+    manifest = directory / "SHA256SUMS"
+    names = [line.split("  ", 1)[1] for line in manifest.read_text(encoding="utf-8").splitlines()]
+    manifest.write_text("".join(f"{hashlib.sha256((directory / n).read_bytes()).hexdigest()}  {n}\n"
+                                for n in sorted(names)), encoding="utf-8")
+
+
 def detector_command(detector: str, tree: Path) -> list[str]:
     if detector == "build":
         return [sys.executable, "build_formulas.py", "--quiet", "--no-cache", "--out", str(tree.parent / "out")]
@@ -197,6 +208,8 @@ def run_mutant(mutant) -> dict:
             return {"id": ident, "file": path, "detector": detector, "outcome": "site not unique or missing",
                     "seconds": 0.0}
         (tree / path).write_text(text.replace(original, mutated), encoding="utf-8")
+        if path.startswith("generated/"):
+            reseal(tree / "generated")
         env = dict(os.environ, PYTHONPATH=str(tree), SUSLOV_NO_CACHE="1")
         start = time.perf_counter()
         done = subprocess.run(detector_command(detector, tree), cwd=tree, env=env, capture_output=True, text=True,

@@ -98,3 +98,10 @@ def test_simulator_cli_caps_workers_with_a_note():
     assert done.returncode == 0, done.stderr
     assert "--workers 1000: capped at" in done.stderr
     assert f"{worker_limit(1000)[0]} workers" in done.stdout and "1000 workers" not in done.stdout
+
+
+def test_a_directory_given_as_scene_is_a_clear_error(tmp_path):
+    """(noticed while testing --workers: `suslov simulate scenes/` ended in IsADirectoryError)"""
+    from suslov.simulator.cli import main
+
+    assert main(["simulate", str(tmp_path), "--explain"]) == 2

@@ -60,13 +60,17 @@ def canonical_frame(I) -> tuple[np.ndarray, tuple[float, float, float, float]]:
         raise ValueError(f"I is not positive definite (smallest eigenvalue {np.linalg.eigvalsh(M)[0]:.6g})") from None
     # det I = 1 through the logarithm of the determinant: entries spanning 1e-300..1e300 have a det that
     # underflows to 0 (then inf/NaN everywhere) although its cube root is an ordinary number
-    sign, log_det = np.linalg.slogdet(M)
-    if sign <= 0 or not np.isfinite(log_det):
-        raise ValueError(f"I is not positive definite (det of I/max|I| has sign {sign:g}, log {log_det:.6g})")
-    with np.errstate(over="ignore", invalid="ignore"):
-        M = M * math.exp(-log_det / 3.0) if -log_det / 3.0 < 709.0 else M * np.inf
+    det = np.linalg.det(M)
+    if det > 1e-290:   # the ordinary case, bit for bit as before
+        M = M / det ** (1.0 / 3.0)
+    else:
+        sign, log_det = np.linalg.slogdet(M)
+        if sign <= 0 or not np.isfinite(log_det):
+            raise ValueError(f"I is not positive definite (det of I/max|I| has sign {sign:g}, log {log_det:.6g})")
+        with np.errstate(over="ignore", invalid="ignore"):
+            M = M * math.exp(-log_det / 3.0) if -log_det / 3.0 < 709.0 else M * np.inf
     if not np.all(np.isfinite(M)):
-        raise ValueError(f"I: its eigenvalues span too many orders of magnitude (det(I/max|I|) = e^{log_det:.6g}); "
+        raise ValueError("I: its eigenvalues span too many orders of magnitude (det(I/max|I|) below 1e-920); "
                          "I / det(I)^(1/3) is beyond float64's range")
     R = rotation_about_e3(0.5 * math.atan2(2 * M[0, 1], M[0, 0] - M[1, 1]))
     M = R.T @ M @ R

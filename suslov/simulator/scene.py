@@ -267,6 +267,10 @@ def load_scene(path) -> Scene:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise SceneError(path, "file", "not found") from None
+    except IsADirectoryError:
+        raise SceneError(path, "file", "is a directory; give a scene file (TOML), e.g. scenes/fig1_omega.toml") from None
+    except PermissionError:
+        raise SceneError(path, "file", "cannot be read (permission denied)") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise SceneError(path, "file", f"not valid TOML ({exc})") from None
     return parse_scene(data, path)
