@@ -3,7 +3,9 @@
 Side by side, in one run, on the committed generated module:
 
 * the proofs (``derivations.output.float_proofs``: the emitted ``_omega`` / ``_omega_general`` / ``_scattering_angle`` on error
-  balls over their boxes, plus the bit-for-bit check of the public function against the analysed composition);
+  balls over their boxes, plus the bit-for-bit check of the public function against the analysed composition;
+  ``derivations.output.integral_proof``: ``first_integral``'s Horner sequence for every p in INTEGRAL_PS, plus its
+  bit-for-bit check);
 * the sampled round-trip checks they replaced (float64 against the mpmath twin at 40 digits at the old
   seeded points; the loops of the old ``float_paths.check_omega`` / ``check_omega_general`` /
   ``check_scattering_angle``).
@@ -33,7 +35,7 @@ from machine_info import cpu_name  # noqa: E402
 from timing import median_seconds  # noqa: E402
 
 from derivations.core.certificates import CertificateLog  # noqa: E402
-from derivations.output import float_proofs  # noqa: E402
+from derivations.output import float_proofs, integral_proof  # noqa: E402
 from generated import suslov_formulas as sf  # noqa: E402
 
 COLD_BUILD_SECONDS = 40.1          # bench/results/build.md, pmax 15, all cores
@@ -89,6 +91,32 @@ def sampled_omega_general():
     return worst
 
 
+def sampled_first_integral():
+    """The old sampled check: per p, 4 d x 3 omega scales against first_integral_mp at 40 digits."""
+    worst = 0.0
+    for p in sf.INTEGRAL_PS:
+        rng = np.random.default_rng(1300 + p)
+        for d in (0.5, 1e-2, 50.0, float(10 ** rng.uniform(-1, 1))):
+            coefficients = sf.first_integral_coefficients(p, d)
+            sizes = [sum(abs(a) for a in coefficients[name]) for name in ("P1", "P2", "P3")]
+            sizes = [mpmath.mpf(v.numerator) / v.denominator for v in sizes]
+            for size in (1e-3, 1.0, 20.0):
+                w1, w2 = (float(v) for v in rng.uniform(-size, size, 2))
+                g = rng.normal(size=3)
+                g /= np.linalg.norm(g)
+                exact = sf.first_integral_mp(p, d, w1, w2, *(float(v) for v in g), dps=40)
+                value = float(sf.first_integral(p, d, w1, w2, *g))
+                s = mpmath.mpf(max(abs(w1), abs(w2)))
+                bound = 2e-15 * (p + 1) * s**p * mpmath.fsum(abs(gi) * si for gi, si in zip(g, sizes)) + 5e-324
+                worst = max(worst, float(abs(value - exact) / bound))
+    return worst
+
+
+def prove_all_integrals():
+    log = CertificateLog(derivation="bench")
+    return [integral_proof.certificate(log, sf, p) for p in sf.INTEGRAL_PS]
+
+
 def main():
     rows = []
     for name, sampled in (("omega", sampled_omega), ("omega_general", sampled_omega_general),
@@ -100,6 +128,13 @@ def main():
             sampled_seconds = median_seconds(sampled, 5)
         rows.append({"function": name, "boxes": proof.boxes, "proven": proof.statement,
                      "proof_seconds": proof_seconds, "sampled_seconds": sampled_seconds})
+    proofs = [integral_proof.prove_first_integral(p) for p in sf.INTEGRAL_PS]
+    with mpmath.workdps(15):
+        sampled_seconds = median_seconds(sampled_first_integral, 5)
+    rows.append({"function": f"first_integral (p = {sf.INTEGRAL_PS[0]}..{sf.INTEGRAL_PS[-1]})",
+                 "boxes": sum(proof.boxes for proof in proofs),
+                 "proven": f"{proofs[0].bound_u}..{proofs[-1].bound_u} u s^p sum_j |g_j| sum_k |a_jk| + 5e-324",
+                 "proof_seconds": median_seconds(prove_all_integrals, 5), "sampled_seconds": sampled_seconds})
     total = sum(r["proof_seconds"] for r in rows)
     machine = f"{cpu_name()}, {platform.python_version()}, 2 cores (shared)"
     lines = ["# Proven float64 error bounds: what they cost the build", "",

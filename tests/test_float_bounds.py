@@ -143,3 +143,75 @@ def test_omega_general_bound_holds_at_hard_points(proofs):
                     exact = sf.omega_general_mp(t, I11, I22, I13, I23, branch, dps=50)
                     for got, want in zip((w1[i], w2[i]), exact):
                         assert abs(got - want) <= bound * B + 1e-300, (I11, I22, I13, I23, branch, t)
+
+
+# ---------------------------------------------------------------- first_integral (derivations.output.integral_proof)
+
+from derivations.output import integral_proof as ip  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def integral_proofs():
+    return {p: ip.prove_first_integral(p) for p in sf.INTEGRAL_PS}
+
+
+def test_first_integral_proofs_within_the_stated_bound(integral_proofs):
+    for p, proof in integral_proofs.items():
+        assert proof.bound <= ip.stated(p), proof
+        assert proof.bound_u < 3 * p + 20      # Horner's 2p roundings, the ratio's p, the three-term sums
+
+
+def _integral_case(p, d, w1, w2, g):
+    """(computed, exact at 50 digits, M = s^p sum_j |g_j| sum_k |a_jk|, in the domain)."""
+    coefficients = sf.first_integral_coefficients(p, d)          # exact Fractions of the float d
+    sizes = [sum(abs(a) for a in coefficients[name]) for name in ("P1", "P2", "P3")]
+    top = max(abs(a) for name in ("P1", "P2", "P3") for a in coefficients[name])
+    with mpmath.workdps(50):
+        s = max(abs(mpmath.mpf(w1)), abs(mpmath.mpf(w2)))
+        total = mpmath.fsum(abs(mpmath.mpf(gj)) * mpmath.mpf(size.numerator) / size.denominator
+                            for gj, size in zip(g, sizes))
+        inside = total >= mpmath.mpf(2) ** -600 * mpmath.mpf(top.numerator) / top.denominator
+        exact = sf.first_integral_mp(p, d, w1, w2, *g, dps=50)
+        return float(sf.first_integral(p, d, w1, w2, *g)), mpmath.mpf(exact), s**p * total, inside
+
+
+def test_first_integral_bound_holds_at_hard_points(integral_proofs):
+    rng = np.random.default_rng(3436)
+    for p in (1, 7, 15):
+        bound = integral_proofs[p].bound
+        for d in (1e-2, 0.31, 1.0, 50.0):
+            coefficients = sf.first_integral_coefficients(p, d)
+            cases = [(1e-25, -3e-26), (2.0**-40, 1.0), (20.0, -19.999999), (1.0, 1.0), (-7.5, 1e-300)]
+            cases += [tuple(float(v) for v in rng.uniform(-5, 5, 2)) for _ in range(3)]
+            for w1, w2 in cases:
+                # a gamma orthogonal to (P1, P2, P3) at the point: F3 cancels to next to 0
+                with mpmath.workdps(50):
+                    P = [mpmath.fsum(mpmath.mpf(a.numerator) / a.denominator * mpmath.mpf(w1) ** (p - k)
+                                     * mpmath.mpf(w2) ** k for k, a in enumerate(coefficients[name]))
+                         for name in ("P1", "P2", "P3")]
+                cancelling = np.array([float(P[1]), -float(P[0]), 0.0])
+                gammas = [rng.normal(size=3), cancelling, np.array([0.0, 0.0, 1.0])]
+                for g in gammas:
+                    if not np.any(g):
+                        continue
+                    g = g / np.max(np.abs(g))
+                    got, exact, M, inside = _integral_case(p, d, w1, w2, g)
+                    assert inside, (p, d, w1, w2, g)
+                    assert abs(got - exact) <= bound * M + 5e-324, (p, d, w1, w2, g)
+
+
+def test_a_constant_added_and_taken_away_fails_the_integral_proof(monkeypatch):
+    walk = ip.walk
+
+    def seeded(p, coefficient, g, small, big, power):
+        return walk(p, lambda i, k: (coefficient(i, k) + 1.0) - 1.0, g, small, big, power)
+
+    monkeypatch.setattr(ip, "walk", seeded)
+    with pytest.raises(fb.BoundFailure):
+        ip.prove_first_integral(7)
+
+
+def test_the_ratio_by_a_reciprocal_makes_the_integral_bound_grow(integral_proofs, monkeypatch):
+    # r = small * (1/big): two roundings in place of one, in every Horner step
+    monkeypatch.setattr(ip, "ratio", lambda small, big: small * (1.0 / big))
+    assert ip.prove_first_integral(15).bound_u >= integral_proofs[15].bound_u + 15

@@ -2,7 +2,8 @@
 
 Part 3 of the round trip (:mod:`derivations.output.roundtrip`).  For each float64 function the
 module's docstring states an error bound.  For ``omega``, ``omega_general`` and ``scattering_angle`` it is proven
-(:mod:`derivations.output.float_proofs`); for the others the function is evaluated at seeded
+(:mod:`derivations.output.float_proofs`), for ``first_integral`` too (:mod:`derivations.output.integral_proof`); for
+the others the function is evaluated at seeded
 points, including the hard cases of ``tests/test_hard_cases.py`` (|t| up to 1e4, d from
 1e-3 to 1e3, p within 1e-13 of odd integers and on both branches of the exact reduction
 of pi p/2, large omega), and compared with the mpmath twin at 40 digits, for every p in
@@ -23,10 +24,7 @@ Also checked: the rows of ``gamma_basis`` form a rotation (det +1), ``special_ca
 chains into ``omega`` (the body's own general solution, in the returned frame, equals
 ``omega(t, p, d)`` with p > 0), and ``meromorphy`` agrees with ``kovalevskaya_exponents``.
 
-Why the rest stays evidence (issue 34): ``first_integral`` (the BLAS product and Horner pass of
-``suslov.kernel.horner``, then a scaling by 2^(p e + E) that can amplify an underflow in the sum: its
-docstring's absolute 5e-324 may not cover g next to the subnormal range, so a proof needs a stated
-domain first), ``gamma_basis`` (series coefficients from balls, a double-double phase, mpmath beyond
+Why the rest stays evidence (issue 34): ``gamma_basis`` (series coefficients from balls, a double-double phase, mpmath beyond
 it: three branches, each needing its own proof) and ``general_scattering_angle`` (four entries through
 the complex root of ``gauss_angle``) are not yet walked by :mod:`float_proofs`; the consistency checks
 of ``special_case_parameters``, ``meromorphy`` and ``kovalevskaya_exponents`` compare float decisions
@@ -63,39 +61,6 @@ def _record(log, claim, ok, seconds, points, worst, method=METHOD):
 
 def _ratio(error, bound) -> float:
     return float(mpmath.mpf(error) / mpmath.mpf(bound))   # in mpmath: either may lie beyond float64
-
-
-def first_integral_bound(p: int, s, g, sizes) -> mpmath.mpf:
-    """The error bound stated in first_integral's docstring; ``sizes`` (sum_k |a_ik| per i) as mpf, since
-    s^p sum |a| may exceed float64."""
-    s = mpmath.mpf(s)
-    return 2e-15 * (p + 1) * s**p * mpmath.fsum(abs(gi) * si for gi, si in zip(g, sizes)) + mpmath.mpf(5e-324)
-
-
-def check_first_integral(log: CertificateLog, module, p: int) -> Certificate:
-    """Seeded points (omega from 1e-3 to 20, so s^p from far below to far above float64's range for large p,
-    d from 1e-2 to 50); where |F3| exceeds float64 the function must raise ValueError instead."""
-    rng = np.random.default_rng(1300 + p)
-    worst, points = 0.0, 0
-    with stopwatch() as elapsed:
-        for d in (0.5, 1e-2, 50.0, float(10 ** rng.uniform(-1, 1))):
-            coefficients = module.first_integral_coefficients(p, d)
-            sizes = [sum(abs(a) for a in coefficients[name]) for name in ("P1", "P2", "P3")]   # exact
-            sizes = [mpmath.mpf(v.numerator) / v.denominator for v in sizes]   # once per d, maybe beyond float64
-            for size in (1e-3, 1.0, 20.0):
-                w1, w2 = (float(v) for v in rng.uniform(-size, size, 2))
-                g = rng.normal(size=3)
-                g /= np.linalg.norm(g)
-                exact = module.first_integral_mp(p, d, w1, w2, *(float(v) for v in g), dps=DPS)
-                try:
-                    value = float(module.first_integral(p, d, w1, w2, *g))
-                    ratio = _ratio(abs(value - exact), first_integral_bound(p, max(abs(w1), abs(w2)), g, sizes))
-                except ValueError:   # allowed only where the value is beyond float64 (to rounding)
-                    ratio = 0.0 if abs(exact) > 1.7e308 else math.inf
-                worst = max(worst, ratio)
-                points += 1
-    return _record(log, f"$p = {p}$: first_integral float64 within $2e-15 (p+1) s^p Sum(abs(g_j) abs(P_j), (j, 1, 3)) + 5e-324$ of "
-                   "first_integral_mp, or ValueError where $abs(F3) > 1.7e308$", worst <= 1, elapsed[0], points, worst)
 
 
 def basis_bound(p: int, d: float, t) -> float:
@@ -444,8 +409,9 @@ def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list
     in ``skip`` (bases certified in workers: :func:`derivations.output.roundtrip.per_p_checks` runs these
     same checks for them in workers)."""
     from derivations.output.float_proofs import certificate as proven
+    from derivations.output.integral_proof import certificate as proven_integral
 
-    # omega and scattering_angle: proven bounds (float_proofs) instead of samples
+    # omega, omega_general, scattering_angle and first_integral: proven bounds instead of samples
     certs = [proven(log, module, "omega"), proven(log, module, "omega_general"), proven(log, module, "scattering_angle"),
              *check_general_scattering_angle(log, module), check_special_case_chain(log, module), check_meromorphy(log, module),
              check_kovalevskaya_exponents(log, module, build.results["kovalevskaya"].exports["matrix"]),
@@ -453,7 +419,7 @@ def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list
              check_load_certificates(log, module, build)]
     for p in module.INTEGRAL_PS:
         if p not in skip:
-            certs.append(check_first_integral(log, module, p))
+            certs.append(proven_integral(log, module, p))
     cores = build.results["meromorphic"].exports["objects"]
     for p in module.BASIS_PS:
         if p not in skip:

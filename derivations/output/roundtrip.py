@@ -209,11 +209,12 @@ def basis_core_by_digest(module, p: int, digest: str) -> tuple:
 def per_p_checks(task) -> list:
     """Per-p work (run in a worker) for a p whose basis was certified in a worker: ``task = (directory,
     p, digest)``.  The core by fingerprint (:func:`basis_core_by_digest`), then the float-path checks
-    of ``first_integral`` and ``gamma_basis`` (:mod:`derivations.output.float_paths`).  The module is
+    of ``first_integral`` (proven: :mod:`derivations.output.integral_proof`) and ``gamma_basis``
+    (:mod:`derivations.output.float_paths`).  The module is
     imported from the directory once per process, so the emitted code is what is checked, and the
     directory must be visible to the worker (local processes; a Dask cluster on the same file
     system).  Returns the certificates, keys left to the main log."""
-    from derivations.output import float_paths
+    from derivations.output import float_paths, integral_proof
 
     directory, p, digest = task
     module = load_module_once(directory)
@@ -222,7 +223,7 @@ def per_p_checks(task) -> list:
     try:
         with mpmath.workdps(15):
             if p in module.INTEGRAL_PS:
-                float_paths.check_first_integral(private, module, p)
+                integral_proof.certificate(private, module, p)      # the proven bound (was sampled)
             # the exact evaluation only from numerators proved equal to the certified ones
             float_paths.check_gamma_basis(private, module, p, numerators if core.outcome is Outcome.PASS else None)
     except CertificationFailure:
