@@ -1,0 +1,55 @@
+"""kovalevskaya_exponents' round-trip certificate (issue 34): ball enclosures of the eigenvalues of the certified
+Kovalevskaya matrix K, not mpmath's QR at 30 digits.  It passes on the module, and fails when the exponents are
+moved by 1e-8 (beyond the stated 1e-9); the fallback through the characteristic polynomial encloses the double
+exponent -1 of a body with p = 2, where Arb cannot isolate the eigenvalues."""
+import flint
+import numpy as np
+import pytest
+import sympy as sp
+
+from derivations.core.certificates import CertificateLog, CertificationFailure, Outcome
+from derivations.core.options import BuildOptions
+from derivations.core.symbols import I11, I13, I22, I23
+from derivations.output import float_paths
+from derivations.output.pipeline import derive
+from generated import suslov_formulas as sf
+
+
+@pytest.fixture(scope="module")
+def K():
+    return derive(BuildOptions(jobs=1), ["model", "kovalevskaya"]).results["kovalevskaya"].exports["matrix"]
+
+
+def test_the_certificate_passes(K):
+    certificate = float_paths.check_kovalevskaya_exponents(CertificateLog(derivation="test"), sf, K)
+    assert certificate.outcome is Outcome.PASS and certificate.work == 8
+
+
+def test_moved_exponents_fail(K):
+    class Moved:
+        canonical_frame = staticmethod(sf.canonical_frame)
+
+        @staticmethod
+        def kovalevskaya_exponents(body):
+            return sf.kovalevskaya_exponents(body) + 1e-8
+
+    with pytest.raises(CertificationFailure):
+        float_paths.check_kovalevskaya_exponents(CertificateLog(derivation="test"), Moved, K)
+
+
+def test_double_exponent_through_the_characteristic_polynomial(K):
+    # I13 = 0, p = 2 exactly in rationals: exponents -1, 1, 2, 1 + 2, 1 - 2 (= -1 twice)
+    d = sp.Rational(1, 2)          # I22 = 1, I11 = I22 (d^2 + 1), I23 = -I22 d/p
+    assert (d**2 + 1, -d / 2) == (sp.Rational(5, 4), sp.Rational(-1, 4))
+    flint.ctx.prec = 200
+    try:
+        values = {I11: flint.acb(flint.fmpq(5, 4)), I22: flint.acb(1), I13: flint.acb(0),
+                  I23: flint.acb(flint.fmpq(-1, 4)), sp.Symbol("r"): flint.acb(flint.fmpq(5, 4)).sqrt()}
+        matrix = flint.acb_mat([[float_paths._acb_of(K[i, j], values) for j in range(5)] for i in range(5)])
+        balls = float_paths._eigenvalue_balls(matrix)
+        expected = sorted([-1, -1, 1, 2, 3])
+        for want in expected:
+            assert any(ball.contains(want) for ball in balls), (want, balls)
+        assert sorted(np.round([float(b.real.mid()) for b in balls], 9)) == expected
+    finally:
+        flint.ctx.prec = 53
