@@ -53,3 +53,36 @@ def test_double_exponent_through_the_characteristic_polynomial(K):
         assert sorted(np.round([float(b.real.mid()) for b in balls], 9)) == expected
     finally:
         flint.ctx.prec = 53
+
+
+def test_meromorphy_certificate_passes_and_fails_for_a_moved_p_squared(K):
+    certificate = float_paths.check_meromorphy(CertificateLog(derivation="test"), sf, K)
+    assert certificate.outcome is Outcome.PASS and certificate.work == 4
+
+    class Moved:
+        canonical_frame = staticmethod(sf.canonical_frame)
+        kovalevskaya_exponents = staticmethod(sf.kovalevskaya_exponents)
+
+        @staticmethod
+        def meromorphy(body):
+            result = sf.meromorphy(body)
+            return type("M", (), {"p_squared": complex(result.p_squared) * (1 + 1e-11)})()
+
+    with pytest.raises(CertificationFailure):
+        float_paths.check_meromorphy(CertificateLog(derivation="test"), Moved, K)
+
+
+def test_lambda_squared_ball_against_the_closed_form(K):
+    # I13 = 0: Lambda^2 = p^2 = I22 (I11 - I22)/I23^2 at the canonical entries (eq:necc1's case), in exact rationals
+    body = [[2.0, 0, 0], [0, 1.0, 0.5], [0, 0.5, 1.5]]
+    from fractions import Fraction
+    e11, e22, e13, e23 = (Fraction(float(v)) for v in sf.canonical_frame(body)[1])
+    assert e13 == 0
+    exact = e22 * (e11 - e22) / e23**2
+    flint.ctx.prec = 200
+    try:
+        ball = float_paths.lambda_squared_ball(sf, body, K)
+        assert ball.contains(flint.acb(flint.fmpq(exact.numerator, exact.denominator)))
+        assert ball.rad() < 1e-40
+    finally:
+        flint.ctx.prec = 53

@@ -48,6 +48,7 @@ from derivations.core.certificates import (
     Outcome,
     stopwatch,
 )
+from derivations.core.symbols import I11, I13, I22, I23
 
 DPS = 40
 METHOD = "numeric evidence (not a certificate): float64 against the mpmath twin at 40 digits, seeded points"
@@ -316,9 +317,6 @@ def check_kovalevskaya_exponents(log: CertificateLog, module, matrix) -> Certifi
     bodies: every step is exact or a ball)."""
     import itertools
 
-    from derivations.core.symbols import I11, I13, I22, I23
-
-    r = sp.Symbol("r")
     rng = np.random.default_rng(1700)
     bodies = [[[2.0, 0, 0], [0, 1.0, 0.5], [0, 0.5, 1.5]], [[2.0, 0, 0.4], [0, 1.0, 0], [0.4, 0, 1.5]],
               [[3.0, 0.2, 0.0], [0.2, 1.0, -0.7], [0.0, -0.7, 2.0]], [[1.5, 0, 0.3], [0, 1.2, 0], [0.3, 0, 2.0]]]
@@ -332,10 +330,7 @@ def check_kovalevskaya_exponents(log: CertificateLog, module, matrix) -> Certifi
         try:
             flint.ctx.prec = 200
             for index, body in enumerate(bodies):
-                values = {name: flint.acb(flint.fmpq(*Fraction(float(v)).as_integer_ratio()))
-                          for name, v in zip((I11, I22, I13, I23), module.canonical_frame(body)[1])}
-                values[r] = (values[I11] * values[I22]).sqrt()
-                K = flint.acb_mat([[_acb_of(matrix[i, j], values) for j in range(5)] for i in range(5)])
+                K = k_ball(module, body, matrix)
                 balls = _eigenvalue_balls(K)
                 got = [flint.acb(complex(e).real, complex(e).imag) for e in module.kovalevskaya_exponents(body)]
                 matched = any(all(abs(got[i] - balls[j]) < tolerance for i, j in enumerate(order))
@@ -444,19 +439,57 @@ def check_load_certificates(log: CertificateLog, module, build) -> Certificate:
                                   detail))
 
 
-def check_meromorphy(log: CertificateLog, module) -> Certificate:
-    worst, points = 0.0, 0
+def lambda_squared_ball(module, body, matrix) -> "flint.acb":
+    """Lambda^2 of the exact Kovalevskaya matrix K at the body's canonical entries (float64, read exactly) as a
+    ball: the ball characteristic polynomial of K over the certified factor (x + 1)(x - 2)(x - 1) is
+    (x - 1)^2 - Lambda^2 = x^2 + q1 x + q0, so Lambda^2 = q1^2/4 - q0 (precision set by the caller)."""
+    K = k_ball(module, body, matrix)
+    quotient, remainder = divmod(K.charpoly(), flint.acb_poly([2, -1, -2, 1]))
+    if not (all(remainder[k].contains(0) for k in range(3)) and (quotient[1] + 2).contains(0)):
+        raise ArithmeticError("the characteristic polynomial of K is not divisible by (x + 1)(x - 2)(x - 1)")
+    return quotient[1] * quotient[1] / 4 - quotient[0]
+
+
+def k_ball(module, body, matrix) -> "flint.acb_mat":
+    """The certified Kovalevskaya matrix at the body's canonical entries (float64 numbers read exactly, r =
+    sqrt(I11 I22) a ball) in complex ball arithmetic."""
+    values = {name: flint.acb(flint.fmpq(*Fraction(float(v)).as_integer_ratio()))
+              for name, v in zip((I11, I22, I13, I23), module.canonical_frame(body)[1])}
+    values[sp.Symbol("r")] = (values[I11] * values[I22]).sqrt()
+    return flint.acb_mat([[_acb_of(matrix[i, j], values) for j in range(5)] for i in range(5)])
+
+
+def check_meromorphy(log: CertificateLog, module, matrix) -> Certificate:
+    """meromorphy's p^2 and kovalevskaya_exponents' Lambda^2 (from the fourth exponent) each against a ball of
+    the exact Lambda^2 of the certified K at the body (:func:`lambda_squared_ball`): a certificate at these
+    four bodies that both are within 1e-12 (relative, or absolute below 1) of it, so of each other."""
+    failures, points = [], 0
+    tolerance = flint.arb("1e-12")
+    saved = flint.ctx.prec
     with stopwatch() as elapsed:
-        bodies = ([[2.0, 0, 0], [0, 1.0, 0.5], [0, 0.5, 1.5]], [[2.0, 0, 0.4], [0, 1.0, 0], [0.4, 0, 1.5]],
-                  [[3.0, 0.2, 0.0], [0.2, 1.0, -0.7], [0.0, -0.7, 2.0]], [[1.5, 0, 0.3], [0, 1.2, 0], [0.3, 0, 2.0]])
-        for body in bodies:
-            result = module.meromorphy(body)
-            lam = module.kovalevskaya_exponents(body)[3] - 1
-            worst = max(worst, abs(complex(result.p_squared) - lam * lam) / (1e-12 * max(1.0, abs(lam * lam))))
-            points += 1
-    return _record(log, "meromorphy's $p^2$ equals $Lambda^2$ of kovalevskaya_exponents in the cases $I13 = 0$, $I23 = 0$ "
-                   "and neither", worst <= 1, elapsed[0], points, worst,
-                   "numeric evidence (not a certificate): float64, four bodies")
+        try:
+            flint.ctx.prec = 200
+            bodies = ([[2.0, 0, 0], [0, 1.0, 0.5], [0, 0.5, 1.5]], [[2.0, 0, 0.4], [0, 1.0, 0], [0.4, 0, 1.5]],
+                      [[3.0, 0.2, 0.0], [0.2, 1.0, -0.7], [0.0, -0.7, 2.0]], [[1.5, 0, 0.3], [0, 1.2, 0], [0.3, 0, 2.0]])
+            for index, body in enumerate(bodies):
+                exact = lambda_squared_ball(module, body, matrix)
+                scale = tolerance * max(flint.arb(1), abs(exact))
+                lam = complex(module.kovalevskaya_exponents(body)[3]) - 1
+                for name, value in (("p^2", complex(module.meromorphy(body).p_squared)), ("Lambda^2", lam * lam)):
+                    if not abs(flint.acb(value.real, value.imag) - exact) < scale:
+                        failures.append(f"body {index}: {name} = {value!r} not within 1e-12 of {exact}")
+                points += 1
+        finally:
+            flint.ctx.prec = saved
+    return log.record(Certificate(
+        "meromorphy's $p^2$ equals $Lambda^2$ of kovalevskaya_exponents in the cases $I13 = 0$, $I23 = 0$ and neither: "
+        "at four bodies both are within $10^(-12) Max(1, abs(Lambda^2))$ of the exact $Lambda^2$ at the body's "
+        "canonical entries", "round trip",
+        "ball enclosure: the characteristic polynomial of the certified Kovalevskaya matrix $K$ in complex ball "
+        "arithmetic at 200 bits (float64 canonical entries read exactly, $r = sqrt(I11 I22)$ a ball) divided by the "
+        "certified factor $(x + 1) (x - 2) (x - 1)$ encloses $Lambda^2$",
+        Outcome.FAIL if failures else Outcome.PASS, elapsed[0], points,
+        "; ".join(failures) if failures else f"{points} bodies: both within the bound of the ball"))
 
 
 def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list:
@@ -468,7 +501,7 @@ def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list
 
     # omega, omega_general, scattering_angle and first_integral: proven bounds instead of samples
     certs = [proven(log, module, "omega"), proven(log, module, "omega_general"), proven(log, module, "scattering_angle"),
-             *check_general_scattering_angle(log, module), check_special_case_chain(log, module), check_meromorphy(log, module),
+             *check_general_scattering_angle(log, module), check_special_case_chain(log, module), check_meromorphy(log, module, build.results["kovalevskaya"].exports["matrix"]),
              check_kovalevskaya_exponents(log, module, build.results["kovalevskaya"].exports["matrix"]),
              check_meromorphy_cases(log, module), check_input_validation(log, module),
              check_load_certificates(log, module, build)]
