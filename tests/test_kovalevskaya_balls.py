@@ -86,3 +86,36 @@ def test_lambda_squared_ball_against_the_closed_form(K):
         assert ball.rad() < 1e-40
     finally:
         flint.ctx.prec = 53
+
+
+def test_meromorphy_cases_certificate_passes_and_fails_for_a_wrong_decision(K):
+    certificate = float_paths.check_meromorphy_cases(CertificateLog(derivation="test"), sf, K)
+    assert certificate.outcome is Outcome.PASS and certificate.work == 9
+
+    class Loose:                      # oddness with a tolerance of 0.6: p = 2.5 and 0.5 "odd"
+        canonical_frame = staticmethod(sf.canonical_frame)
+        kovalevskaya_exponents = staticmethod(sf.kovalevskaya_exponents)
+
+        @staticmethod
+        def meromorphy(body):
+            result = sf.meromorphy(body)
+            odd = 2 * round((result.p - 1) / 2) + 1 if result.p is not None else None   # the nearest odd integer
+            loose = odd is not None and abs(result.p - odd) <= 0.6
+            return result._replace(odd=loose)
+
+    with pytest.raises(CertificationFailure):
+        float_paths.check_meromorphy_cases(CertificateLog(derivation="test"), Loose, K)
+
+
+def test_a_decision_at_its_tolerance_edge_is_not_clear(K):
+    # p = 3: distance ~1e-16 against tol * p = 3e-9, clear; p = 3 + 3e-9 sits on the edge tol * p (within 1e-12)
+    d, I22 = 0.5, 1.3
+    for p, clear_expected in ((3.0, True), (3.0 + 3e-9, False)):
+        I23 = -I22 * d / p
+        body = [[I22 * (d * d + 1), 0, 0], [0, I22, I23], [0, I23, I22 * (d / p) ** 2 + 1.0]]
+        flint.ctx.prec = 200
+        try:
+            clear = float_paths._exact_decision(sf, body, K, 1e-9)[3]
+        finally:
+            flint.ctx.prec = 53
+        assert clear is clear_expected, p
