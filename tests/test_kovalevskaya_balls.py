@@ -10,7 +10,7 @@ import sympy as sp
 from derivations.core.certificates import CertificateLog, CertificationFailure, Outcome
 from derivations.core.options import BuildOptions
 from derivations.core.symbols import I11, I13, I22, I23
-from derivations.output import float_paths
+from derivations.output import kovalevskaya_balls as kb
 from derivations.output.pipeline import derive
 from generated import suslov_formulas as sf
 
@@ -21,7 +21,7 @@ def K():
 
 
 def test_the_certificate_passes(K):
-    certificate = float_paths.check_kovalevskaya_exponents(CertificateLog(derivation="test"), sf, K)
+    certificate = kb.check_kovalevskaya_exponents(CertificateLog(derivation="test"), sf, K)
     assert certificate.outcome is Outcome.PASS and certificate.work == 8
 
 
@@ -34,7 +34,7 @@ def test_moved_exponents_fail(K):
             return sf.kovalevskaya_exponents(body) + 1e-8
 
     with pytest.raises(CertificationFailure):
-        float_paths.check_kovalevskaya_exponents(CertificateLog(derivation="test"), Moved, K)
+        kb.check_kovalevskaya_exponents(CertificateLog(derivation="test"), Moved, K)
 
 
 def test_double_exponent_through_the_characteristic_polynomial(K):
@@ -45,8 +45,8 @@ def test_double_exponent_through_the_characteristic_polynomial(K):
     try:
         values = {I11: flint.acb(flint.fmpq(5, 4)), I22: flint.acb(1), I13: flint.acb(0),
                   I23: flint.acb(flint.fmpq(-1, 4)), sp.Symbol("r"): flint.acb(flint.fmpq(5, 4)).sqrt()}
-        matrix = flint.acb_mat([[float_paths._acb_of(K[i, j], values) for j in range(5)] for i in range(5)])
-        balls = float_paths._eigenvalue_balls(matrix)
+        matrix = flint.acb_mat([[kb._acb_of(K[i, j], values) for j in range(5)] for i in range(5)])
+        balls = kb._eigenvalue_balls(matrix)
         expected = sorted([-1, -1, 1, 2, 3])
         for want in expected:
             assert any(ball.contains(want) for ball in balls), (want, balls)
@@ -56,7 +56,7 @@ def test_double_exponent_through_the_characteristic_polynomial(K):
 
 
 def test_meromorphy_certificate_passes_and_fails_for_a_moved_p_squared(K):
-    certificate = float_paths.check_meromorphy(CertificateLog(derivation="test"), sf, K)
+    certificate = kb.check_meromorphy(CertificateLog(derivation="test"), sf, K)
     assert certificate.outcome is Outcome.PASS and certificate.work == 4
 
     class Moved:
@@ -69,7 +69,7 @@ def test_meromorphy_certificate_passes_and_fails_for_a_moved_p_squared(K):
             return type("M", (), {"p_squared": complex(result.p_squared) * (1 + 1e-11)})()
 
     with pytest.raises(CertificationFailure):
-        float_paths.check_meromorphy(CertificateLog(derivation="test"), Moved, K)
+        kb.check_meromorphy(CertificateLog(derivation="test"), Moved, K)
 
 
 def test_lambda_squared_ball_against_the_closed_form(K):
@@ -81,7 +81,7 @@ def test_lambda_squared_ball_against_the_closed_form(K):
     exact = e22 * (e11 - e22) / e23**2
     flint.ctx.prec = 200
     try:
-        ball = float_paths.lambda_squared_ball(sf, body, K)
+        ball = kb.lambda_squared_ball(sf, body, K)
         assert ball.contains(flint.acb(flint.fmpq(exact.numerator, exact.denominator)))
         assert ball.rad() < 1e-40
     finally:
@@ -89,7 +89,7 @@ def test_lambda_squared_ball_against_the_closed_form(K):
 
 
 def test_meromorphy_cases_certificate_passes_and_fails_for_a_wrong_decision(K):
-    certificate = float_paths.check_meromorphy_cases(CertificateLog(derivation="test"), sf, K)
+    certificate = kb.check_meromorphy_cases(CertificateLog(derivation="test"), sf, K)
     assert certificate.outcome is Outcome.PASS and certificate.work == 9
 
     class Loose:                      # oddness with a tolerance of 0.6: p = 2.5 and 0.5 "odd"
@@ -104,7 +104,7 @@ def test_meromorphy_cases_certificate_passes_and_fails_for_a_wrong_decision(K):
             return result._replace(odd=loose)
 
     with pytest.raises(CertificationFailure):
-        float_paths.check_meromorphy_cases(CertificateLog(derivation="test"), Loose, K)
+        kb.check_meromorphy_cases(CertificateLog(derivation="test"), Loose, K)
 
 
 def test_a_decision_at_its_tolerance_edge_is_not_clear(K):
@@ -115,7 +115,7 @@ def test_a_decision_at_its_tolerance_edge_is_not_clear(K):
         body = [[I22 * (d * d + 1), 0, 0], [0, I22, I23], [0, I23, I22 * (d / p) ** 2 + 1.0]]
         flint.ctx.prec = 200
         try:
-            clear = float_paths._exact_decision(sf, body, K, 1e-9)[3]
+            clear = kb._exact_decision(sf, body, K, 1e-9)[3]
         finally:
             flint.ctx.prec = 53
         assert clear is clear_expected, p
