@@ -28,6 +28,14 @@ def modules(tmp_path_factory):
         if shown.returncode != 0:
             pytest.skip(f"revision {BEFORE} not in this clone")
         (tmp / name).write_bytes(shown.stdout)
+    # the old module imports the run-time modules of its own revision; one of them (the hand-written LRU,
+    # replaced by functools.lru_cache) no longer exists, so it is loaded from that revision too
+    shown = subprocess.run(["git", "show", f"{BEFORE}:suslov/kernel/lru.py"], cwd=ROOT, capture_output=True)
+    (tmp / "lru.py").write_bytes(shown.stdout)
+    lru_spec = importlib.util.spec_from_file_location("suslov.kernel.lru", tmp / "lru.py")
+    lru = importlib.util.module_from_spec(lru_spec)
+    lru_spec.loader.exec_module(lru)
+    sys.modules["suslov.kernel.lru"] = lru
     loaded = []
     for index, directory in enumerate((tmp, GENERATED)):
         spec = importlib.util.spec_from_file_location(f"layout_check_{index}", directory / "suslov_formulas.py")
@@ -35,6 +43,7 @@ def modules(tmp_path_factory):
         sys.modules[spec.name] = module
         spec.loader.exec_module(module)
         loaded.append(module)
+    del sys.modules["suslov.kernel.lru"]
     return loaded
 
 
