@@ -254,6 +254,9 @@ class TextPrinter(StrPrinter):
     def _print_Equality(self, expr):
         return f"{self._print(expr.lhs)} = {self._print(expr.rhs)}"
 
+    def _print_Unequality(self, expr):
+        return f"{self._print(expr.lhs)} != {self._print(expr.rhs)}"
+
     def _print_Tuple(self, expr):
         return "(" + ", ".join(self._print(a) for a in expr.args) + ")"
 
