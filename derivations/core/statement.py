@@ -183,7 +183,8 @@ def _fold(expr):
         return expr.func(*args)
     if isinstance(expr, sp.Mul) and args[0] == 1 and len(args) == 2:
         return args[1]                                     # "1/x" read as 1*x**-1
-    if isinstance(expr, sp.Mul) and any(a == -1 or (a.is_Mul and a.args[0] == -1) for a in args):
+    if isinstance(expr, sp.Mul) and any(a == -1 or (a.is_Mul and a.args[0] == -1) or (a.is_Rational and not a.is_Integer)
+                                        for a in args):
         return sp.Mul(*(sp.Pow(*a.args) if a.is_Pow else a for a in args))   # "-x/y" read as (-1*x)*y**-1: a signed product, printed "- x/y"
     if args == expr.args:
         return expr
@@ -245,6 +246,15 @@ def math(span: str):
 
 # -- printing -------------------------------------------------------------------------------------
 
+def _float_text(value) -> str:
+    """A float as written: ``1e-15``, ``0.25``, ``1e8`` (not ``100000000.0``)."""
+    short = repr(float(value))
+    mantissa, exponent = f"{float(value):e}".split("e")
+    mantissa = mantissa.rstrip("0").rstrip(".")
+    scientific = f"{mantissa}e{int(exponent)}"
+    return scientific if len(scientific) < len(short) and float(scientific) == float(value) else short
+
+
 class TextPrinter(StrPrinter):
     """``sstr`` in the written order, an equation as ``a = b``."""
 
@@ -264,7 +274,7 @@ class TextPrinter(StrPrinter):
         return "i"
 
     def _print_Float(self, expr):
-        return repr(float(expr))
+        return _float_text(expr)
 
 
 class MathPrinter(FormulaPrinter):
@@ -283,7 +293,7 @@ class MathPrinter(FormulaPrinter):
         return super()._print_Pow(expr)
 
     def _print_Float(self, expr):
-        mantissa, _, exponent = repr(float(expr)).partition("e")   # as written: 1e-15, 2.5e8, 0.25
+        mantissa, _, exponent = _float_text(expr).partition("e")   # as written: 1e-15, 2.5e8, 0.25
         if not exponent:
             return mantissa
         power = f"10^{{{int(exponent)}}}"
