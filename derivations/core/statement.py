@@ -19,10 +19,8 @@ hand.  A string without dollar signs is prose only (what a branch that still wri
 produces): it is typeset as text, so any program syntax in it shows in the PDF, where
 ``tests/test_pdf_text.py`` finds it.
 
-Rings and quotient rings (the domains of the exact zero tests, ``derivations.core.exact``) are
-:class:`Ring` parts: ``Q(I11, I22)[r]/(r^2 - I11 I22)`` typesets as
-:math:`\\mathbb{Q}(I_{11}, I_{22})[r]/(r^2 - I_{11} I_{22})`; they are written in the same
-one-string form (:func:`ring`), each generator and relation read by the same parser.
+Rings (the domains of ``derivations.core.exact``) are :class:`Ring` parts, written in the same form
+(:func:`ring`): ``Q(I11, I22)[r]/(r^2 - I11 I22)`` typesets as :math:`\\mathbb{Q}(I_{11}, I_{22})[r]/(r^2 - I_{11} I_{22})`.
 """
 from __future__ import annotations
 
@@ -183,12 +181,13 @@ def _fold(expr):
         return expr.func(*args)
     if isinstance(expr, sp.Mul) and args[0] == 1 and len(args) == 2:
         return args[1]                                     # "1/x" read as 1*x**-1
-    if isinstance(expr, sp.Mul) and any(a == -1 or (a.is_Mul and a.args[0] == -1) or (a.is_Rational and not a.is_Integer)
-                                        for a in args):
+    # a signed or fractional product without functions (evaluation would rewrite exp(i pi/2) as i), evaluated
+    if isinstance(expr, sp.Mul) and not any(a.has(sp.Function, sp.Derivative) for a in args) and any(
+            a == -1 or (a.is_Mul and a.args[0] == -1) or (a.is_Rational and not a.is_Integer) for a in args):
         return sp.Mul(*(sp.Pow(*a.args) if a.is_Pow else a for a in args))   # "-x/y" read as (-1*x)*y**-1: a signed product, printed "- x/y"
     if args == expr.args:
         return expr
-    if isinstance(expr, (sp.Add, sp.Mul, sp.Pow)):
+    if isinstance(expr, (sp.Add, sp.Mul, sp.Pow, sp.Function)):   # exp(-i pi/2) stays written, not -i
         return expr.func(*args, evaluate=False)
     return expr.func(*args)
 
@@ -286,6 +285,13 @@ class MathPrinter(FormulaPrinter):
     def _print_Symbol(self, expr, style="plain"):
         name = SYMBOL_NAMES.get(expr.name)
         return name if name is not None else super()._print_Symbol(expr, style)
+
+    def _print_Mul(self, expr):
+        flat = [f for a in expr.args for f in (a.args if a.is_Mul else (a,))]   # (-1*x)*y**-1 as written
+        if flat[0].is_Number and flat[0].is_negative and len(flat) > 1:
+            rest = ([-flat[0]] if flat[0] != -1 else []) + flat[1:]
+            return "- " + self._print(sp.Mul(*rest, evaluate=False) if len(rest) > 1 else rest[0])
+        return super()._print_Mul(expr)
 
     def _print_Pow(self, expr):
         if expr.base.is_Integer and expr.exp.is_Integer and expr.exp < 0:
@@ -451,9 +457,6 @@ class Statement:
 
     def __add__(self, other):
         return Statement(self, other)
-
-    def __radd__(self, other):
-        return Statement(other, self)
 
     def __str__(self) -> str:
         return self.text()
