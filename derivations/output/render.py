@@ -21,19 +21,9 @@ from sympy.printing.pycode import PythonCodePrinter
 
 from derivations.core.typeset import latex
 from derivations.core.statement import tex as statement_tex
+from derivations.core.statement import tex_escape   # the templates' tex filter (prose parts escape alike)
 
 TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
-
-_TEX_SPECIALS = {
-    "\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
-    "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}",
-    "<": r"\textless{}", ">": r"\textgreater{}",
-}
-
-
-def tex_escape(text) -> str:
-    """Escape plain text for TeX (claims, notes, details)."""
-    return "".join(_TEX_SPECIALS.get(ch, ch) for ch in str(text))
 
 
 class _ArithmeticPrinter(PythonCodePrinter):
