@@ -102,6 +102,6 @@ def test_simulator_cli_caps_workers_with_a_note():
 
 def test_a_directory_given_as_scene_is_a_clear_error(tmp_path):
     """(noticed while testing --workers: `suslov simulate scenes/` ended in IsADirectoryError)"""
-    from suslov.simulator.cli import main
+    from suslov.cli import main
 
     assert main(["simulate", str(tmp_path), "--explain"]) == 2

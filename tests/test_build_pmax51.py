@@ -41,7 +41,7 @@ def test_pmax_51_builds_and_certifies_every_p(tmp_path):
                 and c["claim"].startswith("p = ")]
 
     residue = {int(c["claim"].split(":")[0][4:]): c["claim"] for c in claims("residue", "Theorem 3.5")
-               if "t0 = i pi/2 have" in c["claim"]}
+               if "t0 = pi*i/2 have" in c["claim"]}
     assert sorted(residue) == list(range(1, 52))
     assert all(("no logarithms" in claim) == (p % 2 == 1) for p, claim in residue.items())
 

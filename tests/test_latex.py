@@ -3,7 +3,7 @@
 Both documents (``suslov_formulas.tex`` and its companion ``certificates.tex``) are compiled
 from the committed ``generated/`` into a temporary directory; the logs must show no overfull
 box wider than 1 pt, no missing character and no font substitution, and the formulas
-document of the default build stays within 20 pages.  Skipped only outside CI when pdflatex
+document of the default build stays within 21 pages.  Skipped only outside CI when pdflatex
 is missing; under CI (CI=true) a missing pdflatex is a failure.
 """
 import os
@@ -14,7 +14,7 @@ import pytest
 from derivations.output import pdf
 from derivations.output.pipeline import GENERATED
 
-MAX_PAGES = 20
+MAX_PAGES = 21   # 20 until the Proposition 4.1 triangle errata row (issue 34)
 
 
 @pytest.fixture(scope="module")

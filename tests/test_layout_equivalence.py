@@ -28,6 +28,14 @@ def modules(tmp_path_factory):
         if shown.returncode != 0:
             pytest.skip(f"revision {BEFORE} not in this clone")
         (tmp / name).write_bytes(shown.stdout)
+    # the old module imports the run-time modules of its own revision; one of them (the hand-written LRU,
+    # replaced by functools.lru_cache) no longer exists, so it is loaded from that revision too
+    shown = subprocess.run(["git", "show", f"{BEFORE}:suslov/kernel/lru.py"], cwd=ROOT, capture_output=True)
+    (tmp / "lru.py").write_bytes(shown.stdout)
+    lru_spec = importlib.util.spec_from_file_location("suslov.kernel.lru", tmp / "lru.py")
+    lru = importlib.util.module_from_spec(lru_spec)
+    lru_spec.loader.exec_module(lru)
+    sys.modules["suslov.kernel.lru"] = lru
     loaded = []
     for index, directory in enumerate((tmp, GENERATED)):
         spec = importlib.util.spec_from_file_location(f"layout_check_{index}", directory / "suslov_formulas.py")
@@ -35,6 +43,7 @@ def modules(tmp_path_factory):
         sys.modules[spec.name] = module
         spec.loader.exec_module(module)
         loaded.append(module)
+    del sys.modules["suslov.kernel.lru"]
     return loaded
 
 
@@ -80,8 +89,10 @@ def test_mp_twins_and_balls_agree(modules):
     assert old.first_integral_mp(3, "0.5", 1, 2, "0.6", "0.8", 0, dps=40) == new.first_integral_mp(
         3, "0.5", 1, 2, "0.6", "0.8", 0, dps=40)
     for p in (1, 3, old.BASIS_PS[-1]):
+        # issue 38 reads t and d and sums the phase with more digits (the phase p t/d no longer loses any):
+        # the last digit may move, nothing more
         a, b = old.gamma_basis_mp("0.3", p, "0.5", dps=40), new.gamma_basis_mp("0.3", p, "0.5", dps=40)
-        assert all(a[i, j] == b[i, j] for i in range(3) for j in range(3))
+        assert all(abs(a[i, j] - b[i, j]) < mpmath.mpf(10) ** -38 for i in range(3) for j in range(3))
     assert old.scattering_angle_mp(2.5, "0.7", dps=60) == new.scattering_angle_mp(2.5, "0.7", dps=60)
     x, y = old.scattering_angle_ball("5/2", "7/10", prec=200), new.scattering_angle_ball("5/2", "7/10", prec=200)
     assert x.mid() == y.mid() and x.rad() == y.rad()

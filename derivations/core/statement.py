@@ -19,10 +19,8 @@ hand.  A string without dollar signs is prose only (what a branch that still wri
 produces): it is typeset as text, so any program syntax in it shows in the PDF, where
 ``tests/test_pdf_text.py`` finds it.
 
-Rings and quotient rings (the domains of the exact zero tests, ``derivations.core.exact``) are
-:class:`Ring` parts: ``Q(I11, I22)[r]/(r^2 - I11 I22)`` typesets as
-:math:`\\mathbb{Q}(I_{11}, I_{22})[r]/(r^2 - I_{11} I_{22})`; they are written in the same
-one-string form (:func:`ring`), each generator and relation read by the same parser.
+Rings (the domains of ``derivations.core.exact``) are :class:`Ring` parts, written in the same form
+(:func:`ring`): ``Q(I11, I22)[r]/(r^2 - I11 I22)`` typesets as :math:`\\mathbb{Q}(I_{11}, I_{22})[r]/(r^2 - I_{11} I_{22})`.
 """
 from __future__ import annotations
 
@@ -183,11 +181,13 @@ def _fold(expr):
         return expr.func(*args)
     if isinstance(expr, sp.Mul) and args[0] == 1 and len(args) == 2:
         return args[1]                                     # "1/x" read as 1*x**-1
-    if isinstance(expr, sp.Mul) and any(a == -1 or (a.is_Mul and a.args[0] == -1) for a in args):
+    # a signed or fractional product without functions (evaluation would rewrite exp(i pi/2) as i), evaluated
+    if isinstance(expr, sp.Mul) and not any(a.has(sp.Function, sp.Derivative) for a in args) and any(
+            a == -1 or (a.is_Mul and a.args[0] == -1) or (a.is_Rational and not a.is_Integer) for a in args):
         return sp.Mul(*(sp.Pow(*a.args) if a.is_Pow else a for a in args))   # "-x/y" read as (-1*x)*y**-1: a signed product, printed "- x/y"
     if args == expr.args:
         return expr
-    if isinstance(expr, (sp.Add, sp.Mul, sp.Pow)):
+    if isinstance(expr, (sp.Add, sp.Mul, sp.Pow, sp.Function)):   # exp(-i pi/2) stays written, not -i
         return expr.func(*args, evaluate=False)
     return expr.func(*args)
 
@@ -245,6 +245,15 @@ def math(span: str):
 
 # -- printing -------------------------------------------------------------------------------------
 
+def _float_text(value) -> str:
+    """A float as written: ``1e-15``, ``0.25``, ``1e8`` (not ``100000000.0``)."""
+    short = repr(float(value))
+    mantissa, exponent = f"{float(value):e}".split("e")
+    mantissa = mantissa.rstrip("0").rstrip(".")
+    scientific = f"{mantissa}e{int(exponent)}"
+    return scientific if len(scientific) < len(short) and float(scientific) == float(value) else short
+
+
 class TextPrinter(StrPrinter):
     """``sstr`` in the written order, an equation as ``a = b``."""
 
@@ -254,6 +263,9 @@ class TextPrinter(StrPrinter):
     def _print_Equality(self, expr):
         return f"{self._print(expr.lhs)} = {self._print(expr.rhs)}"
 
+    def _print_Unequality(self, expr):
+        return f"{self._print(expr.lhs)} != {self._print(expr.rhs)}"
+
     def _print_Tuple(self, expr):
         return "(" + ", ".join(self._print(a) for a in expr.args) + ")"
 
@@ -261,7 +273,7 @@ class TextPrinter(StrPrinter):
         return "i"
 
     def _print_Float(self, expr):
-        return repr(float(expr))
+        return _float_text(expr)
 
 
 class MathPrinter(FormulaPrinter):
@@ -274,13 +286,20 @@ class MathPrinter(FormulaPrinter):
         name = SYMBOL_NAMES.get(expr.name)
         return name if name is not None else super()._print_Symbol(expr, style)
 
+    def _print_Mul(self, expr):
+        flat = [f for a in expr.args for f in (a.args if a.is_Mul else (a,))]   # (-1*x)*y**-1 as written
+        if flat[0].is_Number and flat[0].is_negative and len(flat) > 1:
+            rest = ([-flat[0]] if flat[0] != -1 else []) + flat[1:]
+            return "- " + self._print(sp.Mul(*rest, evaluate=False) if len(rest) > 1 else rest[0])
+        return super()._print_Mul(expr)
+
     def _print_Pow(self, expr):
         if expr.base.is_Integer and expr.exp.is_Integer and expr.exp < 0:
             return f"{self._print(expr.base)}^{{{self._print(expr.exp)}}}"   # 10^{-90}, not 1/10^90 written out
         return super()._print_Pow(expr)
 
     def _print_Float(self, expr):
-        mantissa, _, exponent = repr(float(expr)).partition("e")   # as written: 1e-15, 2.5e8, 0.25
+        mantissa, _, exponent = _float_text(expr).partition("e")   # as written: 1e-15, 2.5e8, 0.25
         if not exponent:
             return mantissa
         power = f"10^{{{int(exponent)}}}"
@@ -438,9 +457,6 @@ class Statement:
 
     def __add__(self, other):
         return Statement(self, other)
-
-    def __radd__(self, other):
-        return Statement(other, self)
 
     def __str__(self) -> str:
         return self.text()

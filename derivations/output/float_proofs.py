@@ -97,7 +97,7 @@ def prove_omega(module) -> Proof:
     if not floor < OMEGA_FLOOR:
         raise BoundFailure(f"omega: absolute part {floor} of the bound exceeds {OMEGA_FLOOR} (|p|/d) c")
     return Proof("omega", bound_u, boxes, "all $t$, $d$ from $10^(-3)$ to $10^3$, $p != 0$ (no overflow)",
-                 f"the computed $omega_i$ is within ${bound_u} u abs(omega_i) + 10^(-300) (abs(p)/d) sqrt(d^2 + 1)$ of "
+                 f"the computed $omega_i$ is within ${bound_u} u abs(omega_i) + 1e-300 (abs(p)/d) sqrt(d^2 + 1)$ of "
                  "the exact one")
 
 
@@ -147,10 +147,10 @@ def prove_scattering_angle(module) -> Proof:
 
 
 PROOFS = {"omega": prove_omega, "scattering_angle": prove_scattering_angle}   # omega_general added below
-CLAIMS = {"omega": "omega: float64 within $5 10^(-15) abs(omega_i) + 10^(-300) (abs(p)/d) sqrt(d^2 + 1)$ of the exact "
+CLAIMS = {"omega": "omega: float64 within $5e-15 abs(omega_i) + 1e-300 (abs(p)/d) sqrt(d^2 + 1)$ of the exact "
                    "$omega$",
-          "scattering_angle": "scattering_angle: float64 within absolute $1.5 10^(-14)$ of the exact $Deltapsi$",
-          "omega_general": "omega_general: float64 within $6 10^(-15) B + 10^(-300)$ of the exact $omega$, "
+          "scattering_angle": "scattering_angle: float64 within absolute $1.5e-14$ of the exact $Deltapsi$",
+          "omega_general": "omega_general: float64 within $6e-15 B + 1e-300$ of the exact $omega$, "
                            "$B = (I11 I22 abs(I23) + I22 abs(I13) r + I11 I22 abs(I13) + I11 abs(I23) r)/D$"}
 
 
@@ -251,7 +251,7 @@ def prove_omega_general(module) -> Proof:
     return Proof("omega_general", bound_u, boxes,
                  "all $t$, entries scaled by the largest magnitude: $I11 >= 10^(-3)$, $I22 >= 10^(-3)$, "
                  "$Max(abs(I13), abs(I23)) >= 10^(-3)$",
-                 f"the computed $omega_i$ is within ${bound_u} u B + 10^(-300)$ of the exact one")
+                 f"the computed $omega_i$ is within ${bound_u} u B + 1e-300$ of the exact one")
 
 
 PROOFS["omega_general"] = prove_omega_general

@@ -21,28 +21,9 @@ from sympy.printing.pycode import PythonCodePrinter
 
 from derivations.core.typeset import latex
 from derivations.core.statement import tex as statement_tex
+from derivations.core.statement import tex_escape   # the templates' tex filter (prose parts escape alike)
 
 TEMPLATES = Path(__file__).resolve().parents[2] / "templates"
-
-_TEX_SPECIALS = {
-    "\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
-    "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}",
-    "<": r"\textless{}", ">": r"\textgreater{}",
-}
-
-
-def tex_escape(text) -> str:
-    """Escape plain text for TeX (claims, notes, details)."""
-    return "".join(_TEX_SPECIALS.get(ch, ch) for ch in str(text))
-
-
-_BREAK_AFTER = ",/([=+"
-
-
-def tex_breakable(text) -> str:
-    """:func:`tex_escape`, with a permitted line break after punctuation inside long tokens
-    (``Q(I11,I22,I13,I23)[r,i]/(r^2-I11 I22)`` must fit a narrow column)."""
-    return "".join(_TEX_SPECIALS.get(ch, ch) + (r"\allowbreak{}" if ch in _BREAK_AFTER else "") for ch in str(text))
 
 
 class _ArithmeticPrinter(PythonCodePrinter):
@@ -70,7 +51,6 @@ def _environment(tex: bool) -> jinja2.Environment:
                        variable_end_string="}", comment_start_string=r"\#{", comment_end_string="}")
     env = jinja2.Environment(**options)
     env.filters["tex"] = tex_escape
-    env.filters["breakable"] = tex_breakable
     env.filters["py"] = python_source
     env.filters["latex"] = latex
     env.filters["claim"] = statement_tex

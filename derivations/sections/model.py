@@ -176,7 +176,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
                    r",\ ".join(r"\dot\gamma_%d=%s" % (i + 1, latex(poisson[x]))
                                for i, x in enumerate((g1, g2, g3))), c_poisson)
     result.errata.append(erratum(paper.WHOLE, "confirmed", paper.WHOLE.latex,
-                                 "derived from R' = R hat(omega), $gamma = R^T e$", c_poisson))
+                                 "derived from $deriv(R, t) = R omegahat$, $gamma = R^T e$", c_poisson))
 
     # 4. general solution by the (u, v) reduction
     u = I13 * w1 + I23 * w2
@@ -224,7 +224,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
         r"a=-\frac{I_{11}I_{22}I_{23}}{D},\ b=\frac{I_{11}I_{22}I_{13}}{D},\ "
         r"\tfrac{c_1}{2}=\frac{I_{22}I_{13}r}{D},\ \tfrac{c_2}{2}=\frac{I_{11}I_{23}r}{D},\ r=\pm\sqrt{I_{11}I_{22}}",
         "the printed coefficients solve the printed gen12 (the two +- are coupled: opposite signs fail) "
-        "but not the derived equations; derived = -I11 I22 x printed (with the opposite branch of +-)",
+        "but not the derived equations; derived equals $-I11 I22$ times printed (with the opposite branch of the sign)",
         c_pr_pr, c_pr_mixed, c_pr_true, c_scale))
 
     # 6. first integrals and the energy level

@@ -170,7 +170,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     result.errata.append(erratum(
         paper.LIMIT_GAMMA1, "corrected",
         r"\lim_{t\to\infty}\gamma_1=1-2i\exp(-\pi i/2)\sigma_1=1-2\frac{\cos^2(\pi p/2)}{\cosh^2(\pi p/(2d))}",
-        "the middle expression equals 1 + 2 sigma1 (exp(pi i s) with $s = -1/2$ is exp(-pi i/2)); the right-hand "
+        "the middle expression equals $1 + 2 sigma1$ ($exp(pi i s)$ with $s = -1/2$ is $exp(-pi i/2)$); the right-hand "
         "side is right with $q = d$", c_limit_printed, c_limit, c_grid_balls, c_grid))
     result.errata.append(erratum(
         paper.ANGLE, "corrected",
@@ -186,7 +186,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         paper.SS_LIMIT_TEXT, "corrected",
         r"\gamma(t)\to(-\cos\Delta\psi,\ \sin\Delta\psi\cos(at+\varphi),\ -\sin\Delta\psi\sin(at+\varphi))^T,\ a=p/d",
         "the text's first component contradicts $cos(Deltapsi)$ = -lim gamma1 two lines later (the formula is "
-        "the right one: the integration confirms it); the sense of rotation follows omega1 -> +a at $+oo$",
+        "the right one: the integration confirms it); the sense of rotation follows $omega1$, which tends to $a$ at $+oo$",
         c_text_printed, c_half, c_grid_balls, c_grid))
     xs, ss, cs = sp.symbols("x s c", nonnegative=True)
     emit = [Emitted("scattering_angle", (xs, ss, cs), (),

@@ -218,7 +218,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                    r"\lim_{t\to\pm\infty}\omega(t)=\left(\pm\frac{p}{d},\,0\right)", c_lim)
     result.errata.append(erratum(paper.LIMIT_TEXT, "corrected",
                                  r"t\to\pm\infty:\ \omega_1\to\pm a",
-                                 "the text's $mp a$ contradicts the formula omegas (omega1 = a tanh t)",
+                                 "the text's $mp a$ contradicts the formula omegas ($omega1 = a tanh t$)",
                                  c_lim, c_lim_text))
 
     # 4. residue of A(t) at t = i pi/2

@@ -100,7 +100,8 @@ def ball_prec(dps=None, prec=None) -> int:
     """The bits of a ball route: ``prec`` (bits, python-flint's unit) or ``dps`` (decimal digits) if given,
     else ``mpmath.mp.prec`` (so ``mp.dps = 40`` moves the balls as it moves the mp twins).
 
-    >>> ball_prec(), ball_prec(dps=30), ball_prec(prec=200)
+    >>> with mpmath.workdps(15):
+    ...     ball_prec(), ball_prec(dps=30), ball_prec(prec=200)
     (53, 100, 200)
     """
     if dps is not None and prec is not None:
