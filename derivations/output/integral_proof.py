@@ -85,10 +85,11 @@ def prove_first_integral(p: int) -> Proof:
     bound_u = math.ceil(_in_u(w))
     return Proof("first_integral", bound_u, 1,
                  f"$p = {p}$, every $d > 0$, $omega$ and $gamma$ with $abs(g_j) <= 1$ and "
-                 f"$Sum(abs(g_j) Sum(abs(a_jk), (k, 0, p)), (j, 1, 3)) >= 2^(-{DOMAIN_LOG2}) A$, $A$ the largest "
+                 f"$Sum(abs(g_j) Sum(abs(a_jk), (k, 0, p)), (j, 1, 3))$ at least $2^(-{DOMAIN_LOG2})$ times $A$, "
+                 "$A$ the largest "
                  "$abs(a_jk)$",
                  f"the computed $F3$ is within ${bound_u} u s^p Sum(abs(g_j) Sum(abs(a_jk), (k, 0, p)), (j, 1, 3)) + "
-                 "5 10^(-324)$ of the exact one")
+                 "5e-324$ of the exact one")
 
 
 def replica(module, p: int, d: float, w1: float, w2: float, g) -> float:
@@ -109,10 +110,10 @@ def replica(module, p: int, d: float, w1: float, w2: float, g) -> float:
     return math.ldexp(value, p * exponent + E) * math.copysign(1.0, big)
 
 
-CLAIM = ("$p = {p}$: first_integral float64 within $2 10^(-15) (p + 1) s^p Sum(abs(g_j) Sum(abs(a_jk), (k, 0, p)), "
-         "(j, 1, 3)) + 5 10^(-324)$ of the exact $F3$ ($s = Max(abs(w1), abs(w2))$, $a_jk$ the coefficients of "
+CLAIM = ("$p = {p}$: first_integral float64 within $2e-15 (p + 1) s^p Sum(abs(g_j) Sum(abs(a_jk), (k, 0, p)), "
+         "(j, 1, 3)) + 5e-324$ of the exact $F3$ ($s = Max(abs(w1), abs(w2))$, $a_jk$ the coefficients of "
          "$P_j$, $A$ the largest $abs(a_jk)$) where $abs(g_j) <= 1$ and $Sum(abs(g_j) Sum(abs(a_jk), (k, 0, p)), "
-         "(j, 1, 3)) >= 2^(-600) A$, or ValueError where the computed value overflows float64")
+         "(j, 1, 3))$ is at least $2^(-600)$ times $A$, or ValueError where the computed value overflows float64")
 
 
 def model_points(p: int):
