@@ -59,7 +59,7 @@ class Result:
         raise KeyError(f"{name!r}: not computed by scene {self.scene.name!r}; available: {', '.join(self.keys())}")
 
     def keys(self) -> list[str]:
-        return [*self.data, *self.results, *self.table]
+        return list(dict.fromkeys([*self.data, *self.results, *self.table]))
 
     def figures(self) -> list[str]:
         """The figures :meth:`plot` can draw for this result."""
