@@ -23,6 +23,10 @@ import sympy as sp
 from derivations.core.certificates import Certificate, CertificateLog, Outcome, stopwatch
 from derivations.core.symbols import I11, I13, I22, I23
 
+# the fixed bodies both checks use (the Kovalevskaya check adds four seeded ones)
+BODIES = ([[2.0, 0, 0], [0, 1.0, 0.5], [0, 0.5, 1.5]], [[2.0, 0, 0.4], [0, 1.0, 0], [0.4, 0, 1.5]],
+          [[3.0, 0.2, 0.0], [0.2, 1.0, -0.7], [0.0, -0.7, 2.0]], [[1.5, 0, 0.3], [0, 1.2, 0], [0.3, 0, 2.0]])
+
 
 def _acb_of(expression, values):
     """A SymPy expression (sums, products, integer powers, rationals, i, symbols) as a complex ball, exactly
@@ -70,8 +74,7 @@ def check_kovalevskaya_exponents(log: CertificateLog, module, matrix) -> Certifi
     the float exponents to the balls with every distance at most 1e-9 found (a certificate for these
     bodies: every step is exact or a ball)."""
     rng = np.random.default_rng(1700)
-    bodies = [[[2.0, 0, 0], [0, 1.0, 0.5], [0, 0.5, 1.5]], [[2.0, 0, 0.4], [0, 1.0, 0], [0.4, 0, 1.5]],
-              [[3.0, 0.2, 0.0], [0.2, 1.0, -0.7], [0.0, -0.7, 2.0]], [[1.5, 0, 0.3], [0, 1.2, 0], [0.3, 0, 2.0]]]
+    bodies = [list(body) for body in BODIES]
     for _ in range(4):
         A = rng.normal(size=(3, 3))
         bodies.append((A @ A.T + 0.5 * np.eye(3)).tolist())
@@ -208,9 +211,7 @@ def check_meromorphy(log: CertificateLog, module, matrix) -> Certificate:
     with stopwatch() as elapsed:
         try:
             flint.ctx.prec = 200
-            bodies = ([[2.0, 0, 0], [0, 1.0, 0.5], [0, 0.5, 1.5]], [[2.0, 0, 0.4], [0, 1.0, 0], [0.4, 0, 1.5]],
-                      [[3.0, 0.2, 0.0], [0.2, 1.0, -0.7], [0.0, -0.7, 2.0]], [[1.5, 0, 0.3], [0, 1.2, 0], [0.3, 0, 2.0]])
-            for index, body in enumerate(bodies):
+            for index, body in enumerate(BODIES):
                 exact = lambda_squared_ball(module, body, matrix)
                 scale = tolerance * max(flint.arb(1), abs(exact))
                 lam = complex(module.kovalevskaya_exponents(body)[3]) - 1
