@@ -146,7 +146,7 @@ SECTIONS = [
     libm's pow within 4 ulp, BLAS sums in any order; ``derivations.output.integral_proof``):
     absolute ``2e-15 (p+1) s^p sum_i |gamma_i| sum_k |a_ik| + 5e-324`` (proven: (3p+14) u in
     place of 2e-15 (p+1); the last term: a result in float64's subnormal range) wherever
-    |gamma_i| <= 1 and ``sum_i |gamma_i| sum_k |a_ik| >= 2^-600 max |a_ik|`` (beyond, an
+    ``|gamma_i| <= 1`` and ``sum_i |gamma_i| sum_k |a_ik| >= 2^-600 max |a_ik|`` (beyond, an
     underflow inside the scaled sum may exceed it).  Raises ValueError for even, non-integer or uncertified p,
     d <= 0, non-finite input, and when the value overflows float64 (use
     :func:`first_integral_mp` then).
