@@ -4,7 +4,7 @@
 phase p t/d ~ 1e27 was formed with dps + 10 digits.  Here |p t/d| runs up to 10^(dps+20).  References:
 (1) the same entry asked with dps + k + 40 digits, where even the old code's working precision exceeds
 the phase's size, compared at dps digits; (2) the float ``gamma_basis`` for float input, whose phase is
-reduced by a different route (``careful_phase``: mpmath with 30 + log10|phase| digits) -- agreement to
+reduced by a different route (``careful_phase``: python-flint balls of the exact phase) -- agreement to
 1e-12 shows the two phase routes and the series agree.
 """
 import math

@@ -42,9 +42,10 @@ RUNTIME_MUTATIONS = [
     ("meromorphy", "bodies.py", 'case, p2 = "I23=0", float(p_squared_i23_zero(FLOAT, I11, I22, I13))',
      'case, p2 = "I23=0", float(p_squared_i13_zero(FLOAT, I11, I22, I13))'),
     # issue 27, finding 9: the careful phase beyond the double-double range (|p t/d| >= 5.3e7)
-    ("gamma_basis", "basis.py", "cos_out[index], sin_out[index] = float(mpmath.cos(angle)), float(mpmath.sin(angle))",
-     "cos_out[index], sin_out[index] = float(mpmath.sin(angle)), float(mpmath.cos(angle))"),
-    ("gamma_basis", "basis.py", "with mpmath.workdps(30 + max(0, int(size) + 1)):", "with mpmath.workdps(15):"),
+    ("gamma_basis", "basis.py", "cos_out[index], sin_out[index] = float(cos_ball.mid()), float(sin_ball.mid())",
+     "cos_out[index], sin_out[index] = float(sin_ball.mid()), float(cos_ball.mid())"),
+    ("gamma_basis", "basis.py", "sin_ball, cos_ball = flint.arb(angle).sin_cos()",
+     "sin_ball, cos_ball = flint.arb(float(angle)).sin_cos()"),
     # finding 10: the fifth exponent, and the odd-p test of meromorphy
     ("kovalevskaya_exponents", "bodies.py", "[-1, 1, 2, 1 + lam, 1 - lam]", "[-1, 1, 2, 1 + lam, 2 - lam]"),
     ("meromorphy", "bodies.py", "round(p) % 2 == 1", "round(p) % 2 == 0"),

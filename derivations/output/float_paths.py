@@ -1,37 +1,26 @@
 """Float paths of the generated module against its exact core and mpmath twins (numeric evidence).
 
 Part 3 of the round trip (:mod:`derivations.output.roundtrip`).  For each float64 function the
-module's docstring states an error bound.  For ``omega``, ``omega_general`` and ``scattering_angle`` it is proven
-(:mod:`derivations.output.float_proofs`), for ``first_integral`` too (:mod:`derivations.output.integral_proof`); for
-the others the function is evaluated at seeded
-points, including the hard cases of ``tests/test_hard_cases.py`` (|t| up to 1e4, d from
-1e-3 to 1e3, p within 1e-13 of odd integers and on both branches of the exact reduction
-of pi p/2, large omega), and compared with the mpmath twin at 40 digits, for every p in
-range.  These are *evidence*, recorded with method ``numeric evidence (not a
-certificate)``: a spot check cannot prove a bound.  The seeds are fixed, so the
-certificate log is deterministic.
+module's docstring states an error bound.  It is proven for ``omega``, ``omega_general`` and ``scattering_angle``
+(:mod:`derivations.output.float_proofs`), ``first_integral`` (:mod:`derivations.output.integral_proof`) and
+``gamma_basis`` (:mod:`derivations.output.basis_proof`, both phase branches).  What is left here is
+*evidence*, recorded with method ``numeric evidence (not a certificate)``: the function evaluated at seeded
+points, including hard cases, against the mpmath twin at 40 digits.  A spot check cannot prove a bound.  The
+seeds are fixed, so the certificate log is deterministic.
 
-``gamma_basis`` and ``gamma_basis_mp`` take their series coefficients from the same ball
-enclosure (python-flint, radius <= 1e-17 and <= 10^-(dps+10)): that the float coefficients are
-within 1e-17 of the exact ones is the ball's own bound; the float-twin comparison checks the float
-evaluation (series, phase reduction, tanh/sech).  The coefficients, the Fourier conversion and the
-normalisation are checked by a route sharing none of them: for every p, ``gamma_basis_mp``
-against the certified numerators evaluated *exactly* in Q at two points with x = e^t, d and
-c = sqrt(d^2+1) rational (:func:`exact_basis_values`), the phase e^{i(p/d)t} enclosed in a ball:
-a certificate for those two points.
+``gamma_basis_mp`` is checked by a route sharing none of its steps: for every p, against the certified numerators
+evaluated *exactly* in Q at two points with x = e^t, d and c = sqrt(d^2+1) rational
+(:func:`exact_basis_values`), the phase e^{i(p/d)t} enclosed in a ball: a certificate for those two points.
 
-Also checked: the rows of ``gamma_basis`` form a rotation (det +1), ``special_case_parameters``
-chains into ``omega`` (the body's own general solution, in the returned frame, equals
-``omega(t, p, d)`` with p > 0), and ``meromorphy`` agrees with ``kovalevskaya_exponents``.
+Also checked: ``special_case_parameters`` chains into ``omega`` (the body's own general solution, in the returned
+frame, equals ``omega(t, p, d)`` with p > 0), and ``meromorphy`` agrees with ``kovalevskaya_exponents``.
 
-Why the rest stays evidence (issue 34): ``gamma_basis`` (series coefficients from balls, a double-double phase, mpmath beyond
-it: three branches, each needing its own proof) and ``general_scattering_angle`` (four entries through
-the complex root of ``gauss_angle``) are not yet walked by :mod:`float_proofs`; the chain of
-``special_case_parameters`` into ``omega`` compares, to 1e-11, float results through LAPACK's eigenvectors (the
-frame, then (p, d)), for which no error bound is stated to prove.  The consistency checks of
-``kovalevskaya_exponents`` and ``meromorphy`` are certificates at their bodies: the float results against ball
-enclosures of the eigenvalues (or Lambda^2) of the certified Kovalevskaya matrix, each decision of
-``meromorphy`` re-checked exactly and shown away from its tolerance edge.
+Why the rest stays evidence (issue 34): ``general_scattering_angle`` (four entries through the complex root of
+``gauss_angle``) is not yet walked by a proof; the chain of ``special_case_parameters`` into ``omega``
+compares, to 1e-11, float results through LAPACK's eigenvectors (the frame, then (p, d)), for which no error bound
+is stated to prove.  The consistency checks of ``kovalevskaya_exponents`` and ``meromorphy`` are certificates at
+their bodies: the float results against ball enclosures of the eigenvalues (or Lambda^2) of the certified
+Kovalevskaya matrix, each decision of ``meromorphy`` re-checked exactly and shown away from its tolerance edge.
 """
 from __future__ import annotations
 
@@ -52,12 +41,8 @@ from derivations.core.certificates import (
 DPS = 40
 METHOD = "numeric evidence (not a certificate): float64 against the mpmath twin at 40 digits, seeded points"
 # why each stays evidence (issue 34), in its method
-WHY_BASIS = ("; not proven yet: three branches (the double-double phase below $5.3 10^7$, the mpmath phase beyond, "
-             "the ball series), each needs its own proof over its own domain")
 WHY_GENERAL = ("; not proven yet: the four entries pass through the invariants and the complex square root of "
                "gauss_angle, whose cover by boxes of the entries is still to be built")
-HARD_T = (-1e4, -700.0, -30.0, -1.0, -1e-8, 0.0, 1e-8, 0.3, 5.0, 711.0, 1e4)
-HARD_D = (1e-3, 0.5, 3.0, 1e3)
 
 
 def _record(log, claim, ok, seconds, points, worst, method=METHOD):
@@ -71,56 +56,16 @@ def _ratio(error, bound) -> float:
     return float(mpmath.mpf(error) / mpmath.mpf(bound))   # in mpmath: either may lie beyond float64
 
 
-def basis_bound(p: int, d: float, t) -> float:
-    """The error bound stated in gamma_basis's docstring."""
-    return 1e-15 * (p + 1) ** 1.5 + 4e-16 * abs(p * t / d) + 2e-16 * abs(t)
-
-
 def check_gamma_basis(log: CertificateLog, module, p: int, core=None) -> list:
-    rng = np.random.default_rng(1400 + p)
-    worst, points, worst_det = 0.0, 0, 0.0
-    certs = []
-    with stopwatch() as elapsed:
-        for d in (0.5, float(10 ** rng.uniform(-1, 1)), 1e-3, 1e3):
-            ts = [0.0, -1e-8, 2.2, -30.0, float(rng.uniform(-8, 8)), 1e4 if d >= 0.5 else 50.0]
-            B = module.gamma_basis(np.array(ts), p, d)
-            for i, t in enumerate(ts):
-                M = module.gamma_basis_mp(t, p, d, dps=DPS)
-                error = max(abs(B[i][r][c] - float(M[r, c])) for r in range(3) for c in range(3))
-                worst = max(worst, _ratio(error, basis_bound(p, d, t)))
-                worst_det = max(worst_det, abs(np.linalg.det(B[i]) - 1.0))
-                points += 1
-    certs.append(_record(log, f"$p = {p}$: gamma_basis float64 within $1e-15 (p+1)^1.5 + 4e-16 abs(p t/d) + 2e-16 abs(t)$ of "
-                         "gamma_basis_mp, and determinant $+1$ (a rotation) to $1e-12$", worst <= 1 and worst_det <= 1e-12,
-                         elapsed[0], points, worst, METHOD + WHY_BASIS))
-    certs.append(check_gamma_basis_far_phase(log, module, p))
+    """gamma_basis at this p: the proven bound for each phase branch (:mod:`derivations.output.basis_proof`; the
+    parity of the certified numerators needs ``core``, without it the proof fails), then gamma_basis_mp against
+    the numerators evaluated exactly."""
+    from derivations.output import basis_proof
+
+    certs = basis_proof.certificates(log, module, p, core)
     if core is not None:
         certs.append(check_basis_mp_exactly(log, module, p, core))
     return certs
-
-
-# t for d = 1e-3: phases p t/d from 1e8 to 3e13, beyond the double-double range (PHASE_LIMIT = 5.3e7)
-FAR_T = (1e5, -3.3e6, 2.9e7, -1e9, 3e10)
-
-
-def check_gamma_basis_far_phase(log: CertificateLog, module, p: int) -> Certificate:
-    """Phases beyond the double-double reduction: the careful (mpmath) phase route of gamma_basis.
-
-    There the phase is computed with 30 + log10|phase| digits, so no phase error grows with |p t/d|:
-    the stated bound's 4e-16 |p t/d| term is not needed and is left out of the claim (a fault in
-    that route, such as swapped cos and sin or too few digits, gives errors of order 1e-7 to 1)."""
-    worst, points = 0.0, 0
-    with stopwatch() as elapsed:
-        for d in (1e-3, 2.5e-3):
-            B = module.gamma_basis(np.array(FAR_T), p, d)
-            for i, t in enumerate(FAR_T):
-                M = module.gamma_basis_mp(t, p, d, dps=DPS)
-                error = max(abs(B[i][r][c] - float(M[r, c])) for r in range(3) for c in range(3))
-                worst = max(worst, _ratio(error, 1e-15 * (p + 1) ** 1.5 + 2e-16 * min(abs(t), 40.0)))
-                points += 1
-    return _record(log, f"$p = {p}$: gamma_basis beyond the double-double phase range ($abs(p t/d)$ from $1e8$ to $3e13$, the "
-                   "careful mpmath phase) within $1e-15 (p+1)^1.5 + 2e-16 Min(abs(t), 40)$ of gamma_basis_mp",
-                   worst <= 1, elapsed[0], points, worst, METHOD + WHY_BASIS)
 
 
 # (x = e^t, d) with x, d and c = sqrt(d^2 + 1) rational and d binary (passed to the mp twin exactly)

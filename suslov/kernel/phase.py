@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["theta", "two_prod", "phase_cos_sin", "half_pi_parts", "PHASE_LIMIT"]
+__all__ = ["theta", "two_prod", "split_quotient", "reduce_scalar", "phase_cos_sin", "half_pi_parts", "PHASE_LIMIT"]
 
 # 2 pi = _C1 + _C2 + _C3 (Cody and Waite's three-part constant)
 _C1, _C2, _C3 = 6.283185303211212, 3.9683743166540886e-09, 2.068073192717642e-18
@@ -51,16 +51,22 @@ def two_prod(a, b):
     return h, ((a1 * b1 - h) + a1 * b2 + a2 * b1) + a2 * b2
 
 
+def split_quotient(p, d):
+    """(q, rd) with p/d = q + rd up to ~u^2 p/d: q = fl(p/d), r = p - q d from Dekker's exact q d (p - qd_h is
+    exact by Sterbenz's lemma), rd = fl(fl(r)/d)."""
+    q = p / d
+    qd_h, qd_l = two_prod(q, d)
+    return q, ((p - qd_h) - qd_l) / d
+
+
 def phase_cos_sin(p, d, t):
     """cos and sin of (p/d) t (arrays broadcast), accurate to ~1e-16 absolute for ``|phase| < PHASE_LIMIT``."""
     t = np.asarray(t, dtype=float)
     p = np.asarray(p, dtype=float)
     d = np.asarray(d, dtype=float)
-    q = p / d
-    qd_h, qd_l = two_prod(q, d)
-    rd = ((p - qd_h) - qd_l) / d
+    q, rd = split_quotient(p, d)
     if q.ndim == 0 and d.ndim == 0:
-        return _phase_scalar_parameters(float(q), float(rd), t)
+        return _cos_sin_reduced(reduce_scalar(float(q), float(rd), t))
     h, low = two_prod(q, t)
     low = low + rd * t
     k = np.round(h / _C1)
@@ -84,8 +90,10 @@ def _cos_sin_reduced(angle: np.ndarray):
     return u2, u
 
 
-def _phase_scalar_parameters(q: float, rd: float, t: np.ndarray):
-    """phase_cos_sin for scalar p, d: q split once, in-place array operations (fewer passes)."""
+def reduce_scalar(q: float, rd: float, t: np.ndarray) -> np.ndarray:
+    """The phase (q + rd) t reduced to about [-pi, pi] for scalar p, d (q split once, in-place array operations:
+    fewer passes): h + low = q t exactly (Dekker), low += rd t, k = rint(h/C1), then ((h - k C1) - k C2) +
+    (low - k C3).  The operation sequence analysed by ``derivations.output.basis_proof``."""
     tq = _SPLIT * q
     q1 = tq - (tq - q)
     q2 = q - q1
@@ -107,7 +115,7 @@ def _phase_scalar_parameters(q: float, rd: float, t: np.ndarray):
     k *= _C3
     low -= k
     h += low
-    return _cos_sin_reduced(h)
+    return h
 
 
 def half_pi_parts(p):
