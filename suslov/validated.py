@@ -101,16 +101,12 @@ def hypergeometric_form(I11, I22, I13, I23, dps: int | None = None, prec: int | 
     (0, True, Fraction(-9, 1))
     """
     exact_values = exact_body(I11, I22, I13, I23)
-    saved = ctx.prec
-    ctx.prec = ball_prec(dps, prec) + 20
-    try:
+    with ctx.workprec(ball_prec(dps, prec) + 20):
         body = [arb(q.numerator) / q.denominator for q in exact_values]
         U2, a, b, _ = gf._gauss_invariants(ARB, *body)
         X, Y = arb_root(a, b)
         kappa, mu, iU = acb(-Y, X) / 2, acb(Y, X) / 2, acb(0, U2.sqrt())
         A, B, C = (2 + kappa + mu + iU) / 2, (kappa + mu - iU) / 2, 1 + kappa
-    finally:
-        ctx.prec = saved
     exact = exact_invariants(*exact_values)
     return HypergeometricForm(A, B, C, {"s=i": 0, "s=-i": 1, "s=oo": "oo"},
                               {"s=i": kappa, "s=-i": mu, "s=oo": iU}, (kappa, mu, 1 + iU), exact)
@@ -163,12 +159,8 @@ def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, dps: int | N
     if method == "closed_form":
         return _closed_form_enclosure(I11, I22, I13, I23, branch, digits, prec)
     limit = seconds_limit(max_seconds)
-    saved = ctx.prec
-    ctx.prec = int(prec if prec is not None else 3.33 * digits + 40)
-    try:
+    with ctx.workprec(int(prec if prec is not None else 3.33 * digits + 40)):
         u, v = omega_coefficients(I11, I22, I13, I23, branch)
-    finally:
-        ctx.prec = saved
     size = max(float(abs(x).upper()) for x in u + v)
     estimate = enclosure_seconds(size, digits)
     if progress is not None:
@@ -187,12 +179,8 @@ def _closed_form_enclosure(I11, I22, I13, I23, branch, digits, prec) -> AngleEnc
         raise ValueError(f"branch={branch!r}: must be +1 or -1")
     bits = prec if prec is not None else int(3.33 * digits + 40)
     angle = gf.general_scattering_angle_ball(I11, I22, I13, I23, prec=bits)
-    saved = ctx.prec
-    ctx.prec = bits
-    try:
+    with ctx.workprec(bits):
         cos_angle = angle.cos()
-    finally:
-        ctx.prec = saved
     return AngleEnclosure(angle, cos_angle, (), 0, 0, bits, {"closed_form": float(angle.rad())}, (), ())
 
 
@@ -244,12 +232,8 @@ def monodromy(I11, I22, I13, I23, dps: int | None = None, branch: int = 1, max_d
     ceiling = min(4 * digits, 200) if max_dps is None else precision("max_dps", max_dps, (digits, 200))
 
     def coefficients(working_digits: int):
-        saved = ctx.prec
-        ctx.prec = int(3.33 * working_digits) + 64
-        try:
+        with ctx.workprec(int(3.33 * working_digits) + 64):
             return omega_coefficients(I11, I22, I13, I23, branch)
-        finally:
-            ctx.prec = saved
 
     limit = seconds_limit(max_seconds)
     u, v = coefficients(digits)

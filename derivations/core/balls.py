@@ -53,12 +53,8 @@ def certify_enclosure(log: CertificateLog, claim: str, label: str, quantities: C
     with stopwatch() as elapsed:
         for attempt in range(doublings + 1):
             bits = prec * 2 ** attempt
-            saved = ctx.prec
-            ctx.prec = bits
-            try:
+            with ctx.workprec(bits):
                 values = quantities(bits)
-            finally:
-                ctx.prec = saved
             work += len(values)
             outcomes = [decide(v, tolerance) for v in values]
             worst = max((abs(v).upper() for v in values), default=arb(0))

@@ -123,7 +123,6 @@ def check_basis_mp_exactly(log: CertificateLog, module, p: int, core) -> Certifi
     with no Fourier series and no recipe: the numerators are those certified (exact equality above)."""
     worst = flint.arb(0)
     ok_sigma = True
-    saved = flint.ctx.prec
     with stopwatch() as elapsed:
         for x, d, c in EXACT_POINTS:
             g1, G, sigma = exact_basis_values(core, p, x, d, c)
@@ -132,8 +131,7 @@ def check_basis_mp_exactly(log: CertificateLog, module, p: int, core) -> Certifi
             d_mp = mpmath.mpf(d.numerator) / d.denominator
             # called at the caller's precision (15 digits here), as a user would: dps alone must set the accuracy
             twin = module.gamma_basis_mp(t, p, d_mp, dps=DPS + 10)
-            flint.ctx.prec = 400
-            try:
+            with flint.ctx.workprec(400):
                 t_ball = flint.arb(_arb(x).log())
                 t_exact = flint.arb(mpmath.nstr(t, 120, strip_zeros=False))     # t~: a decimal of 120 digits is exact
                 shift = abs(t_exact - t_ball) * p / _arb(d) * _arb(c)
@@ -149,8 +147,6 @@ def check_basis_mp_exactly(log: CertificateLog, module, p: int, core) -> Certifi
                         value = flint.arb(mpmath.nstr(twin[r, col], DPS + 30, strip_zeros=False))
                         gap = abs(value - expected[r][col]) + shift
                         worst = max(worst, flint.arb(gap.upper()), key=lambda a: a.upper())
-            finally:
-                flint.ctx.prec = saved
             if sigma is None or sigma != module._BASIS_SIGMA[p]:
                 ok_sigma = False
         ok = ok_sigma and worst < flint.arb(10) ** -40

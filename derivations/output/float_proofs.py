@@ -78,8 +78,7 @@ def d_boxes(n: int = 24) -> list:
 
 
 def prove_omega(module) -> Proof:
-    saved, ctx.prec = ctx.prec, PREC
-    try:
+    with ctx.workprec(PREC):
         worst, floor, boxes = arb(0), arb(0), 0
         p = FE(box(1.0, 2.0))
         for t in t_boxes(step=0.5):
@@ -91,8 +90,6 @@ def prove_omega(module) -> Proof:
                     worst = max(worst, w.r, key=lambda a: a.upper())
                     floor = max(floor, w.a / arb(scale.lower()), key=lambda a: a.upper())
                 boxes += 1
-    finally:
-        ctx.prec = saved
     bound_u = math.ceil(_in_u(worst))
     if not floor < OMEGA_FLOOR:
         raise BoundFailure(f"omega: absolute part {floor} of the bound exceeds {OMEGA_FLOOR} (|p|/d) c")
@@ -128,8 +125,7 @@ def r_boxes(n: int = 32) -> list:
 
 
 def prove_scattering_angle(module) -> Proof:
-    saved, ctx.prec = ctx.prec, PREC
-    try:
+    with ctx.workprec(PREC):
         worst, boxes = arb(0), 0
         rho_x = (1 + U) ** 3 - 1          # x = fl(fl(fl(pi) |p|) / (2d)): three roundings, 2d exact
         for x in x_boxes():
@@ -139,8 +135,6 @@ def prove_scattering_angle(module) -> Proof:
                 angle = module._scattering_angle(ErrorContext(), fx, s, c)
                 worst = max(worst, angle.e, key=lambda a: a.upper())
                 boxes += 1
-    finally:
-        ctx.prec = saved
     bound_u = math.ceil(_in_u(worst))
     return Proof("scattering_angle", bound_u, boxes, "all $p$ and $d > 0$ with $pi abs(p)/(2 d) <= 1024$",
                  f"the computed $Deltapsi$ is within ${bound_u} u$ (absolute) of the exact one")
@@ -231,8 +225,7 @@ def prove_omega_general(module) -> Proof:
     """omega_general: the run-time wrapper divides the entries by the largest magnitude (each scaled entry within
     u of the exact ratio), r = sqrt(I11 I22) of the scaled entries, then the emitted core; the bound is in the
     magnitude form |w~ - w| <= W u B + A with B = sum |k_j| (the docstring's B: |T|, |S| <= 1)."""
-    saved, ctx.prec = ctx.prec, PREC
-    try:
+    with ctx.workprec(PREC):
         worst, floor, boxes = arb(0), arb(0), 0
         for entries in general_boxes():
             I11, I22, I13, I23 = (FE(b, _mag(b) * U, U, 0) for b in entries)
@@ -243,8 +236,6 @@ def prove_omega_general(module) -> Proof:
                     worst = max(worst, w.w, key=lambda a: a.upper())
                     floor = max(floor, w.aw, key=lambda a: a.upper())
                 boxes += 1
-    finally:
-        ctx.prec = saved
     bound_u = math.ceil(_in_u(worst))
     if not floor < OMEGA_FLOOR:
         raise BoundFailure(f"omega_general: absolute part {floor} of the bound exceeds {OMEGA_FLOOR}")

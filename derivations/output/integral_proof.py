@@ -59,8 +59,7 @@ def walk(p: int, coefficient, g, small, big, power):
 
 
 def prove_first_integral(p: int) -> Proof:
-    saved, ctx.prec = ctx.prec, PREC
-    try:
+    with ctx.workprec(PREC):
         unit = box(-1.0, 1.0)
         # distinct objects: the walk must not take a~_0k g_0 for a square
         coefficients = [[FE(unit, U + ETA, U, ETA) for _ in range(p + 1)] for _ in range(3)]
@@ -80,8 +79,6 @@ def prove_first_integral(p: int) -> Proof:
         floor = arb(2) ** -(p + 2 + DOMAIN_LOG2)
         if not aw < (arb(stated(p)) - w) * floor:
             raise BoundFailure(f"first_integral p={p}: absolute part {aw} beyond the slack on the domain")
-    finally:
-        ctx.prec = saved
     bound_u = math.ceil(_in_u(w))
     return Proof("first_integral", bound_u, 1,
                  f"$p = {p}$, every $d > 0$, $omega$ and $gamma$ with $abs(g_j) <= 1$ and "

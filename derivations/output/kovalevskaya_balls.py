@@ -148,23 +148,18 @@ def check_meromorphy_cases(log: CertificateLog, module, matrix) -> Certificate:
     cases.append(([[2.0, 0, 0.4], [0, 1.0, 0], [0.4, 0, 1.5]], "I23=0", None, False))
     cases.append(([[2.0, 0, 0.4], [0, 1.0, 0.3], [0.4, 0.3, 1.5]], "neither", None, False))
     failures, points = [], 0
-    saved = flint.ctx.prec
-    with stopwatch() as elapsed:
-        try:
-            flint.ctx.prec = 200
-            for body, case, p, odd in cases:
-                got = module.meromorphy(body)
-                exact_case, ball, exact_odd, clear = _exact_decision(module, body, matrix, 1e-9)
-                built = (exact_case, exact_odd, ball is None) == (case, odd, p is None) and (
-                    ball is None or abs(ball - flint.arb(p)) < flint.arb("1e-12") * p)
-                agrees = (got.case, got.odd, got.p is None) == (exact_case, exact_odd, ball is None) and (
-                    ball is None or abs(flint.arb(got.p) - ball) < flint.arb("1e-13") * max(flint.arb(1), ball))
-                if not (built and agrees and clear):
-                    failures.append(f"{case} p={p}: got {got.case}, p={got.p}, odd={got.odd}; exact {exact_case}, "
-                                    f"p={ball}, odd={exact_odd}" + ("" if clear else ", at a tolerance edge"))
-                points += 1
-        finally:
-            flint.ctx.prec = saved
+    with stopwatch() as elapsed, flint.ctx.workprec(200):
+        for body, case, p, odd in cases:
+            got = module.meromorphy(body)
+            exact_case, ball, exact_odd, clear = _exact_decision(module, body, matrix, 1e-9)
+            built = (exact_case, exact_odd, ball is None) == (case, odd, p is None) and (
+                ball is None or abs(ball - flint.arb(p)) < flint.arb("1e-12") * p)
+            agrees = (got.case, got.odd, got.p is None) == (exact_case, exact_odd, ball is None) and (
+                ball is None or abs(flint.arb(got.p) - ball) < flint.arb("1e-13") * max(flint.arb(1), ball))
+            if not (built and agrees and clear):
+                failures.append(f"{case} p={p}: got {got.case}, p={got.p}, odd={got.odd}; exact {exact_case}, "
+                                f"p={ball}, odd={exact_odd}" + ("" if clear else ", at a tolerance edge"))
+            points += 1
     return log.record(Certificate(
         "meromorphy: case, $p$ and oddness agree with the exact analysis of bodies built from $(p, d)$ "
         "(odd, even and non-integer $p$ with $I13 = 0$; $I23 = 0$; neither), at nine float64 bodies", "round trip",

@@ -63,13 +63,9 @@ def angle_check(item: tuple) -> dict:
     from suslov.validated import omega_coefficients
 
     with stopwatch() as elapsed:
-        saved = ctx.prec
-        ctx.prec = int(3.33 * digits) + 60
-        try:
+        with ctx.workprec(int(3.33 * digits) + 60):
             closed = closed_form(source, body)["angle"]
             u, v = omega_coefficients(*body)
-        finally:
-            ctx.prec = saved
         enclosure = ss_angle_enclosure(u, v, digits=digits, max_seconds=None).angle
         difference = abs(closed - enclosure)
     return {"body": body, "closed": closed.str(20, radius=False), "enclosure": enclosure.str(20),
@@ -85,12 +81,10 @@ def trace_check(item: tuple) -> dict:
     from suslov.validated import omega_coefficients
 
     with stopwatch() as elapsed:
-        saved = ctx.prec
-        try:
-            ctx.prec = int(3.33 * digits) + 64
+        with ctx.workprec(int(3.33 * digits) + 64):
             u, v = omega_coefficients(*body)
             guard = guard_digits(residues(u, v))
-            ctx.prec = int(3.33 * (digits + guard)) + 64
+        with ctx.workprec(int(3.33 * (digits + guard)) + 64):
             u, v = omega_coefficients(*body)
             mono = compute_monodromy(u, v, digits, guard, with_infinity=False)   # restores ctx.prec
             c = closed_form(source, body)
@@ -107,7 +101,5 @@ def trace_check(item: tuple) -> dict:
             crossed = max(abs(pair[0] - (x2 * x2 - 1)).upper(), abs(pair[1] - (x1 * x1 - 1)).upper())
             worst = max(worst, min(straight, crossed))
             scale = max(abs(q).upper() for q in computed + pair).max(arb(1))
-        finally:
-            ctx.prec = saved
     return {"body": body, "relative": (worst / scale).str(3, radius=False), "relative_float": float(worst / scale),
             "radius": mono.radius, "seconds": elapsed[0]}

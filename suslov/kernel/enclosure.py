@@ -318,67 +318,67 @@ def ss_angle_enclosure(u, v, digits: float = 30, prec: int | None = None, step: 
         raise ValueError(f"series_start={series_start!r}: must be in [0.5, 3] (the series converge for |x| < 1)")
     if not 0 < step <= 0.5:
         raise ValueError(f"step={step!r}: must be in (0, 0.5] (tanh, sech have poles pi/2 off the real axis)")
-    saved = ctx.prec, ctx.cap
-    ctx.prec = int(prec if prec is not None else 3.33 * digits + 40)
+    saved_cap = ctx.cap                                # workprec restores the precision, not the cap
     try:
-        u = tuple(arb(x) for x in u)
-        v = tuple(arb(x) for x in v)
-        nu = (u[0] ** 2 + u[1] ** 2).sqrt()
-        if not nu > 0:
-            raise ValueError("u = 0: no limit rotation (omega does not tend to a non-zero equilibrium)")
-        n = (u[0] / nu, u[1] / nu, arb(0))
-        target = arb(10) ** (-digits)
-        S = arb(series_start)
-        if not S.is_exact():
-            raise ValueError(f"series_start={series_start!r}: must be a binary fraction (0.5, 1.5, 2.25, ...)")
-        order = math.ceil(1.5 * digits) + 10
-        ctx.cap = order + 2                            # arb_series truncates at ctx.cap terms
-        clock = _Clock(max_seconds, progress, 2 * float(S))
-        y, tail_minus = _limit_series(u, v, n, -1, (-S).exp(), target / 3, clock)
-        delta = _norm_upper([arb(0, b.rad()) for b in y]) + tail_minus
-        at_start = tuple(b + _UNIT * tail_minus for b in y)
-        y = [b.mid() for b in y]
-        per_unit_time = target / 3 / (2 * S)          # step budget: truncation <= this times h
-        step_error = arb(0)
-        c, steps = -S, 0
-        while c < S:
-            clock.check(float(c + S))
-            # h = step / 2^m keeps every c an exact dyadic number: c lands on s = 0 (gamma(0) reported)
-            # and on S exactly
-            h = arb(step)
-            while (c < 0 and c + h > 0) or c + h > S:
-                h = h / 2
-            M = _disc_bound(c, u, v)
-            Y = _norm_upper(y)
-            truncation = _truncation(Y, M, h, order)
-            while truncation > per_unit_time * h:     # adapt the step where omega turns fast
-                h = h / 2
-                if h < 1e-9:
-                    raise ArithmeticError(f"step below 1e-9 at s = {c}: |omega| too large for {digits} digits "
-                                          f"at {ctx.prec} bits")
+        with ctx.workprec(int(prec if prec is not None else 3.33 * digits + 40)):
+            u = tuple(arb(x) for x in u)
+            v = tuple(arb(x) for x in v)
+            nu = (u[0] ** 2 + u[1] ** 2).sqrt()
+            if not nu > 0:
+                raise ValueError("u = 0: no limit rotation (omega does not tend to a non-zero equilibrium)")
+            n = (u[0] / nu, u[1] / nu, arb(0))
+            target = arb(10) ** (-digits)
+            S = arb(series_start)
+            if not S.is_exact():
+                raise ValueError(f"series_start={series_start!r}: must be a binary fraction (0.5, 1.5, 2.25, ...)")
+            order = math.ceil(1.5 * digits) + 10
+            ctx.cap = order + 2                            # arb_series truncates at ctx.cap terms
+            clock = _Clock(max_seconds, progress, 2 * float(S))
+            y, tail_minus = _limit_series(u, v, n, -1, (-S).exp(), target / 3, clock)
+            delta = _norm_upper([arb(0, b.rad()) for b in y]) + tail_minus
+            at_start = tuple(b + _UNIT * tail_minus for b in y)
+            y = [b.mid() for b in y]
+            per_unit_time = target / 3 / (2 * S)          # step budget: truncation <= this times h
+            step_error = arb(0)
+            c, steps = -S, 0
+            while c < S:
+                clock.check(float(c + S))
+                # h = step / 2^m keeps every c an exact dyadic number: c lands on s = 0 (gamma(0) reported)
+                # and on S exactly
+                h = arb(step)
+                while (c < 0 and c + h > 0) or c + h > S:
+                    h = h / 2
+                M = _disc_bound(c, u, v)
+                Y = _norm_upper(y)
                 truncation = _truncation(Y, M, h, order)
-            balls = _step(y, c, h, u, v, order)
-            step_error += _norm_upper([arb(0, b.rad()) for b in balls]) + truncation
-            y = [b.mid() for b in balls]
-            c, steps = c + h, steps + 1
-            if c == 0:
-                at_zero = tuple(arb(x) + _UNIT * (delta + step_error).abs_upper() for x in y)
-        delta += step_error
-        g, tail_plus = _limit_series(u, v, n, +1, (-S).exp(), target / 3, clock, 2 * float(S))
-        g = [b + _UNIT * tail_plus for b in g]
-        along = sum((y[k] * g[k] for k in range(3)), arb(0))
-        along = along + _UNIT * (delta * (1 + tail_plus)).abs_upper()    # |<e, g>| <= |e| |g|
-        cos_angle = (-along).intersection(arb(0, 1))
-        # sin Delta psi = |y x g| (y, g unit solutions at angle pi - Delta psi); |e x g| <= |e| |g|
-        cross = (y[1] * g[2] - y[2] * g[1], y[2] * g[0] - y[0] * g[2], y[0] * g[1] - y[1] * g[0])
-        norm = sum((k * k for k in cross), arb(0)).nonnegative_part().sqrt()
-        sin_angle = (norm + _UNIT * (delta * (1 + tail_plus)).abs_upper()).intersection(arb(0.5, 0.5))
-        angle = _angle_from_both(cos_angle, sin_angle)
-        s0, s1 = -float(S), float(S)
-        return AngleEnclosure(Ball(angle), Ball(cos_angle), (s0, s1), steps, order, ctx.prec,
-                              {"tail_minus": float(tail_minus.abs_upper()), "steps": float(step_error.abs_upper()),
-                               "tail_plus": float(tail_plus.abs_upper())}, at_zero, at_start)
+                while truncation > per_unit_time * h:     # adapt the step where omega turns fast
+                    h = h / 2
+                    if h < 1e-9:
+                        raise ArithmeticError(f"step below 1e-9 at s = {c}: |omega| too large for {digits} digits "
+                                              f"at {ctx.prec} bits")
+                    truncation = _truncation(Y, M, h, order)
+                balls = _step(y, c, h, u, v, order)
+                step_error += _norm_upper([arb(0, b.rad()) for b in balls]) + truncation
+                y = [b.mid() for b in balls]
+                c, steps = c + h, steps + 1
+                if c == 0:
+                    at_zero = tuple(arb(x) + _UNIT * (delta + step_error).abs_upper() for x in y)
+            delta += step_error
+            g, tail_plus = _limit_series(u, v, n, +1, (-S).exp(), target / 3, clock, 2 * float(S))
+            g = [b + _UNIT * tail_plus for b in g]
+            along = sum((y[k] * g[k] for k in range(3)), arb(0))
+            along = along + _UNIT * (delta * (1 + tail_plus)).abs_upper()    # |<e, g>| <= |e| |g|
+            cos_angle = (-along).intersection(arb(0, 1))
+            # sin Delta psi = |y x g| (y, g unit solutions at angle pi - Delta psi); |e x g| <= |e| |g|
+            cross = (y[1] * g[2] - y[2] * g[1], y[2] * g[0] - y[0] * g[2], y[0] * g[1] - y[1] * g[0])
+            norm = sum((k * k for k in cross), arb(0)).nonnegative_part().sqrt()
+            sin_angle = (norm + _UNIT * (delta * (1 + tail_plus)).abs_upper()).intersection(arb(0.5, 0.5))
+            angle = _angle_from_both(cos_angle, sin_angle)
+            s0, s1 = -float(S), float(S)
+            return AngleEnclosure(Ball(angle), Ball(cos_angle), (s0, s1), steps, order, ctx.prec,
+                                  {"tail_minus": float(tail_minus.abs_upper()), "steps": float(step_error.abs_upper()),
+                                   "tail_plus": float(tail_plus.abs_upper())}, at_zero, at_start)
     finally:
-        ctx.prec, ctx.cap = saved
+        ctx.cap = saved_cap
 
 

@@ -134,9 +134,7 @@ def compute_monodromy(u, v, digits: int = 30, guard: int | None = None, with_inf
     equilibrium I13 = I23 = 0) nothing is integrated: no matrices, one "unknown" certificate saying how
     many digits it would need.  ``on_loop(done, total)``, if given, is called before each loop and after
     the last (the caller's time limit and progress: :func:`suslov.validated.monodromy`)."""
-    saved = ctx.prec
-    ctx.prec = working_precision(digits)
-    try:
+    with ctx.workprec(working_precision(digits)):
         R = residues(u, v)
         guard = guard_digits(R) if guard is None else guard
         infinity = R[0] + R[1] + R[2]     # residue at infinity of the x-system, up to sign: -(sum of residues)
@@ -147,7 +145,7 @@ def compute_monodromy(u, v, digits: int = 30, guard: int | None = None, with_inf
                      f"of |omega| near the equilibrium I13 = I23 = 0); beyond the limit {MAX_WORKING_DIGITS}: "
                      "not integrated")
             return Monodromy({}, exponents, digits=digits, guard=guard, certificates=[(claim, "unknown", "")])
-        ctx.prec = working_precision(digits + guard)
+    with ctx.workprec(working_precision(digits + guard)):
         R = residues(u, v)
         log10_eps = -(digits + guard) - 8
         big = acb(BIG_RADIUS)
@@ -161,8 +159,6 @@ def compute_monodromy(u, v, digits: int = 30, guard: int | None = None, with_inf
             matrices[name] = path_transfer(R, path, log10_eps)
         tick(len(paths), len(paths))
         return Monodromy(matrices, exponents, digits=digits, guard=guard)
-    finally:
-        ctx.prec = saved
 
 
 def _contains(matrix: acb_mat, target: acb_mat) -> bool:

@@ -40,13 +40,9 @@ def scattering_angle_mp(emitted, p, d, dps):
 
 def scattering_angle_ball(emitted, p, d, dps, prec) -> Ball:
     prec = ball_prec(dps, prec)
-    saved = flint.ctx.prec
-    flint.ctx.prec = prec + 20
-    try:
+    with flint.ctx.workprec(prec + 20):
         p, d = to_arb("p", p), to_arb("d", d)
         if not d > 0:
             raise ValueError(f"d={d}: must be positive")
         s, c = abs((p / 2).sin_pi()), abs((p / 2).cos_pi())
         return Ball(emitted(ARB, flint.arb.pi() * abs(p) / (2 * d), s, c))
-    finally:
-        flint.ctx.prec = saved

@@ -65,10 +65,8 @@ def series_balls(core, p: int, d, radius: mpmath.mpf, bits: int):
 
     Returns (alpha, beta) as ``acb_mat``, rows gamma^(1)_1..3 then G_1..3 (V scaled), columns k = 0..p.
     """
-    saved = flint.ctx.prec
-    try:
-        while True:
-            flint.ctx.prec = bits
+    while True:
+        with flint.ctx.workprec(bits):
             ring = AcbBasisRing(_arb_of(d))
             c = (ring.d**2 + 1).sqrt()
             real, cplx = core(p, ring)
@@ -82,9 +80,7 @@ def series_balls(core, p: int, d, radius: mpmath.mpf, bits: int):
             parts = (part for m in (alpha, beta) for v in m.entries() for part in (v.real, v.imag))
             if all(_mpf_of(part.rad()) <= radius for part in parts):
                 return alpha, beta
-            bits *= 2
-    finally:
-        flint.ctx.prec = saved
+        bits *= 2
 
 
 def _series_midpoints(core, p: int, d, radius: mpmath.mpf, bits: int, convert) -> list:

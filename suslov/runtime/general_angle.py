@@ -74,9 +74,7 @@ def general_scattering_angle_mp(invariants, emitted, I11, I22, I13, I23, dps=Non
 
 def general_scattering_angle_ball(invariants, emitted, I11, I22, I13, I23, dps=None, prec=None) -> Ball:
     prec = ball_prec(dps, prec)
-    saved = flint.ctx.prec
-    flint.ctx.prec = prec + 30
-    try:
+    with flint.ctx.workprec(prec + 30):
         I11, I22, I13, I23 = (to_arb(n, x) for n, x in zip(NAMES, (I11, I22, I13, I23)))
         for name, x in (("I11", I11), ("I22", I22)):
             if not x > 0:
@@ -84,5 +82,3 @@ def general_scattering_angle_ball(invariants, emitted, I11, I22, I13, I23, dps=N
         if I13.is_zero() and I23.is_zero():
             _equilibrium(True)
         return Ball(emitted(ARB, *gauss_angle.arb_arguments(*invariants(ARB, I11, I22, I13, I23))))
-    finally:
-        flint.ctx.prec = saved
