@@ -50,13 +50,10 @@ def test_enclosure_contains_an_independent_50_digit_value(body):
         u, v = mp_coefficients(*body)
         _, along = ss_through(u, v, 50)
         reference = mpmath.acos(-along)
-        ctx.prec = 200
-        try:
+        with ctx.workprec(200):
             ball = arb(mpmath.nstr(reference, 55))
             assert enclosure.angle.overlaps(ball)
             assert abs(enclosure.angle.mid() - ball) < 1e-28
-        finally:
-            ctx.prec = 53
 
 
 def test_special_body_contains_the_closed_form():
@@ -82,11 +79,8 @@ def test_general_body_agrees_with_the_simulators_integration():
 
 
 def test_odd_p_gives_pi_inside_the_ball():
-    ctx.prec = 150                     # u, v are balls: made at the working precision, or they carry 53-bit radii
-    try:
+    with ctx.workprec(150):   # u, v are balls: made at the working precision, or they carry 53-bit radii
         u, v = omega_pd(arb(3), arb(1) / 2)
-    finally:
-        ctx.prec = 53
     enclosure = ss_angle_enclosure(u, v, digits=30)
     assert enclosure.angle.contains(arb.pi()) or enclosure.angle.overlaps(arb.pi())
     assert enclosure.cos_angle.overlaps(arb(-1)) and float(enclosure.cos_angle.rad()) < 1e-28
@@ -176,9 +170,7 @@ def gamma_basis_ball(t, p, d, bits=256):
     from suslov.kernel import fourier
     from suslov.recipes.rings import AcbBasisRing
 
-    saved = ctx.prec
-    ctx.prec = bits
-    try:
+    with ctx.workprec(bits):
         ring = AcbBasisRing(d)
         c = (ring.d**2 + 1).sqrt()
         real, cplx = sf._basis_core(p, ring)
@@ -205,8 +197,6 @@ def gamma_basis_ball(t, p, d, bits=256):
             out[1][j] = cphi * z.real - sphi * z.imag
             out[2][j] = -sigma * (sphi * z.real + cphi * z.imag)
         return out
-    finally:
-        ctx.prec = saved
 
 
 @pytest.mark.parametrize("t,p,d", [(0.3, 1, 0.5), (-7.25, 3, 0.5), (2.0, 5, 1.7), (40.0, 7, 0.05), (-1e3, 3, 2.0),
@@ -250,13 +240,10 @@ def test_angle_from_cosine_and_sine_keeps_the_radius(angle):
         exact = mpmath.pi - mpmath.mpf("1e-20") if angle == "pi - 1e-20" else (
             +mpmath.pi if angle == "pi" else mpmath.mpf(angle))
         cos_s, sin_s, exact_s = (mpmath.nstr(x, 70) for x in (mpmath.cos(exact), mpmath.sin(exact), exact))
-    ctx.prec = 200
-    try:
+    with ctx.workprec(200):
         radius = arb("1e-40")
         cos_ball = (arb(cos_s) + arb(0, 1) * radius).intersection(arb(0, 1))
         sin_ball = (arb(sin_s) + arb(0, 1) * radius).intersection(arb(0.5, 0.5))
         enclosed = _angle_from_both(cos_ball, sin_ball)
         assert enclosed.overlaps(arb(exact_s))
         assert float(enclosed.rad()) < 1e-38        # the cosine alone would give about 1e-20 at 0 and pi
-    finally:
-        ctx.prec = 53

@@ -109,8 +109,7 @@ def test_reordered_product_keeps_a_proof_but_changes_nothing_silently(proofs):
 def test_error_arithmetic_against_mpmath_on_a_float_chain():
     """fl((x*y + z)/w) for float inputs: the FE bound contains the true error (mpmath at 60 digits)."""
     rng = np.random.default_rng(7)
-    ctx.prec = 128
-    try:
+    with ctx.workprec(128):
         for _ in range(200):
             x, y, z, w = (float(v) for v in rng.uniform(-3, 3, 4))
             if abs(w) < 1e-3:
@@ -121,8 +120,6 @@ def test_error_arithmetic_against_mpmath_on_a_float_chain():
             fe = (fb.FE(arb(x)) * fb.FE(arb(y)) + fb.FE(arb(z))) / fb.FE(arb(w))
             assert abs(got - exact) <= float(fe.e.upper()) * (1 + 1e-12)
             assert float(fe.e.upper()) < 1e-12 + 10 * U * abs(float(exact)) + 1e-300 or abs(x * y + z) < 1e-3
-    finally:
-        ctx.prec = 53
 
 
 def test_omega_general_bound_holds_at_hard_points(proofs):

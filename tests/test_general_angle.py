@@ -36,12 +36,9 @@ def reference(body):
 
 def error(got, ball) -> float:
     """Upper bound of |got - ball| for a float or an mpf (taken exactly: man 2^exp)."""
-    saved, ctx.prec = ctx.prec, 1100
-    try:
+    with ctx.workprec(1100):
         sign, man, exp, _ = (got if isinstance(got, mpmath.mpf) else mpmath.mpf(float(got)))._mpf_
         return float((arb(-int(man) if sign else int(man)) * arb(2) ** int(exp) - ball).abs_upper())
-    finally:
-        ctx.prec = saved
 
 
 HARD = {   # (I11, I22, I13, I23): exact binary values of these floats are the bodies
@@ -95,16 +92,13 @@ def test_scaled_tensors_give_the_same_angle(body):
 
 def direct_formula(body, prec=400):
     """Delta psi from the defining formula in acb, from omega_coefficients (no invariants, no evaluation form)."""
-    saved, ctx.prec = ctx.prec, prec
-    try:
+    with ctx.workprec(prec):
         (u1, u2), (v1, v2) = omega_coefficients(*body)
         w = (acb(u1, -v1) ** 2 + acb(u2, -v2) ** 2).sqrt()
         U = (u1 * u1 + u2 * u2).sqrt()
         tau = 2 * (arb.pi() * acb(0, 1) * w / 2).cos()
         cos2 = ((arb.pi() * U).cosh() * abs(tau) ** 2 - (tau * tau).real) / (2 * (arb.pi() * U).sinh() ** 2)
         return 2 * cos2.sqrt().acos()
-    finally:
-        ctx.prec = saved
 
 
 EXACT = [("5/4", 1, "3/10", "-1/2"), (1, "5/2", "2/5", "7/10"), (2, 1, "1/1000", "-1/3"), (1, "1001/1000", 5, 7)]

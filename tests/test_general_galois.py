@@ -70,13 +70,9 @@ def test_exponents_against_validated_monodromy_traces(body):
     form = hypergeometric_form(*body, prec=120)
     kappa, mu = form.exponent_differences["s=i"], form.exponent_differences["s=-i"]
     iU = form.exponent_differences["s=oo"]
-    saved = ctx.prec
-    ctx.prec = 120
-    try:
+    with ctx.workprec(120):
         predicted = {"x=i": 1 + 2 * (4 * kappa).cos_pi(), "x=-i": 1 + 2 * (4 * mu).cos_pi(),
                      "x=0": 1 + 2 * (2 * iU).cos_pi()}
-    finally:
-        ctx.prec = saved
     for point, value in predicted.items():
         trace = mono.matrices[point].trace()
         assert (trace - value).contains(0) and abs(trace - value) < 1e-10 * max(1.0, float(abs(value).upper())), \

@@ -41,8 +41,7 @@ def test_double_exponent_through_the_characteristic_polynomial(K):
     # I13 = 0, p = 2 exactly in rationals: exponents -1, 1, 2, 1 + 2, 1 - 2 (= -1 twice)
     d = sp.Rational(1, 2)          # I22 = 1, I11 = I22 (d^2 + 1), I23 = -I22 d/p
     assert (d**2 + 1, -d / 2) == (sp.Rational(5, 4), sp.Rational(-1, 4))
-    flint.ctx.prec = 200
-    try:
+    with flint.ctx.workprec(200):
         values = {I11: flint.acb(flint.fmpq(5, 4)), I22: flint.acb(1), I13: flint.acb(0),
                   I23: flint.acb(flint.fmpq(-1, 4)), sp.Symbol("r"): flint.acb(flint.fmpq(5, 4)).sqrt()}
         matrix = flint.acb_mat([[kb._acb_of(K[i, j], values) for j in range(5)] for i in range(5)])
@@ -51,8 +50,6 @@ def test_double_exponent_through_the_characteristic_polynomial(K):
         for want in expected:
             assert any(ball.contains(want) for ball in balls), (want, balls)
         assert sorted(np.round([float(b.real.mid()) for b in balls], 9)) == expected
-    finally:
-        flint.ctx.prec = 53
 
 
 def test_meromorphy_certificate_passes_and_fails_for_a_moved_p_squared(K):
@@ -79,13 +76,10 @@ def test_lambda_squared_ball_against_the_closed_form(K):
     e11, e22, e13, e23 = (Fraction(float(v)) for v in sf.canonical_frame(body)[1])
     assert e13 == 0
     exact = e22 * (e11 - e22) / e23**2
-    flint.ctx.prec = 200
-    try:
+    with flint.ctx.workprec(200):
         ball = kb.lambda_squared_ball(sf, body, K)
         assert ball.contains(flint.acb(flint.fmpq(exact.numerator, exact.denominator)))
         assert ball.rad() < 1e-40
-    finally:
-        flint.ctx.prec = 53
 
 
 def test_meromorphy_cases_certificate_passes_and_fails_for_a_wrong_decision(K):
@@ -113,9 +107,6 @@ def test_a_decision_at_its_tolerance_edge_is_not_clear(K):
     for p, clear_expected in ((3.0, True), (3.0 + 3e-9, False)):
         I23 = -I22 * d / p
         body = [[I22 * (d * d + 1), 0, 0], [0, I22, I23], [0, I23, I22 * (d / p) ** 2 + 1.0]]
-        flint.ctx.prec = 200
-        try:
+        with flint.ctx.workprec(200):
             clear = kb._exact_decision(sf, body, K, 1e-9)[3]
-        finally:
-            flint.ctx.prec = 53
         assert clear is clear_expected, p

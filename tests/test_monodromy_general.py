@@ -145,9 +145,7 @@ def test_one_taylor_step_against_the_matrix_exponential_at_300_digits():
 
     from suslov.kernel.fuchsian_flow import cross_matrix, transfer
 
-    saved = ctx.prec
-    ctx.prec = 1100
-    try:
+    with ctx.workprec(1100):
         R = [cross_matrix([acb("0.3"), acb("-1.7"), acb("0.4", "0.2")]), acb_mat(3, 3), acb_mat(3, 3)]
         c, h = acb("0.5"), acb("0.1", "0.2")     # rho(c) = 1/2 (x = 0), |h| < rho/2
         step = transfer(R, c, h, -300)
@@ -157,8 +155,6 @@ def test_one_taylor_step_against_the_matrix_exponential_at_300_digits():
         assert all((step[r, k] - exact[r, k]).contains(0) for r in range(3) for k in range(3))
         assert not all((transfer(R, c, h * acb("1.001"), -300)[r, k] - exact[r, k]).contains(0)
                        for r in range(3) for k in range(3))
-    finally:
-        ctx.prec = saved
 
 
 def test_the_relation_holds_in_its_one_order_and_the_others_are_excluded():
