@@ -6,6 +6,8 @@ Side by side, in one run, on the committed generated module:
   balls over their boxes, plus the bit-for-bit check of the public function against the analysed composition;
   ``derivations.output.integral_proof``: ``first_integral``'s Horner sequence for every p in INTEGRAL_PS, plus its
   bit-for-bit check);
+* ``derivations.output.basis_proof`` (``gamma_basis``, both phase branches, every p in BASIS_PS, with its bit-for-bit
+  and assembly checks) and ``derivations.output.general_angle_proof`` (``general_scattering_angle``'s mixed bound);
 * the sampled round-trip checks they replaced (float64 against the mpmath twin at 40 digits at the old
   seeded points; the loops of the old ``float_paths.check_omega`` / ``check_omega_general`` /
   ``check_scattering_angle``).
@@ -35,7 +37,7 @@ from machine_info import cpu_name  # noqa: E402
 from timing import median_seconds  # noqa: E402
 
 from derivations.core.certificates import CertificateLog  # noqa: E402
-from derivations.output import float_proofs, integral_proof  # noqa: E402
+from derivations.output import basis_proof, float_paths, float_proofs, general_angle_proof, integral_proof  # noqa: E402
 from generated import suslov_formulas as sf  # noqa: E402
 
 COLD_BUILD_SECONDS = 40.1          # bench/results/build.md, pmax 15, all cores
@@ -112,6 +114,31 @@ def sampled_first_integral():
     return worst
 
 
+def sampled_gamma_basis():
+    """The old sampled check of gamma_basis (before its proof): per p, 4 d x 6 t and 2 d x 5 far t against the twin."""
+    worst = 0.0
+    for p in sf.BASIS_PS:
+        rng = np.random.default_rng(1400 + p)
+        points = [(d, [0.0, -1e-8, 2.2, -30.0, float(rng.uniform(-8, 8)), 1e4 if d >= 0.5 else 50.0])
+                  for d in (0.5, float(10 ** rng.uniform(-1, 1)), 1e-3, 1e3)]
+        points += [(d, [1e5, -3.3e6, 2.9e7, -1e9, 3e10]) for d in (1e-3, 2.5e-3)]
+        for d, ts in points:
+            B = sf.gamma_basis(np.array(ts), p, d)
+            for i, t in enumerate(ts):
+                M = sf.gamma_basis_mp(t, p, d, dps=40)
+                error = max(abs(B[i][r][c] - float(M[r, c])) for r in range(3) for c in range(3))
+                worst = max(worst, error / (1e-15 * (p + 1) ** 1.5 + 4e-16 * abs(p * t / d) + 2e-16 * abs(t)))
+    return worst
+
+
+def prove_all_bases():
+    log = CertificateLog(derivation="bench")
+    from derivations.output.roundtrip import BASIS_RING
+
+    cores = {p: tuple(part.M for part in sf._basis_core(p, BASIS_RING)) for p in sf.BASIS_PS}
+    return lambda: [basis_proof.certificates(log, sf, p, cores[p]) for p in sf.BASIS_PS]
+
+
 def prove_all_integrals():
     log = CertificateLog(derivation="bench")
     return [integral_proof.certificate(log, sf, p) for p in sf.INTEGRAL_PS]
@@ -135,6 +162,23 @@ def main():
                  "boxes": sum(proof.boxes for proof in proofs),
                  "proven": f"{proofs[0].bound_u}..{proofs[-1].bound_u} u s^p sum_j |g_j| sum_k |a_jk| + 5e-324",
                  "proof_seconds": median_seconds(prove_all_integrals, 5), "sampled_seconds": sampled_seconds})
+    with mpmath.workdps(15):
+        sampled_seconds = median_seconds(sampled_gamma_basis, 5)
+    bound = basis_proof.prove(sf.BASIS_PS[-1])["near"]
+    rows.append({"function": f"gamma_basis (p = {sf.BASIS_PS[0]}..{sf.BASIS_PS[-1]}, both branches)",
+                 "boxes": sum(basis_proof.prove(p)["boxes"] for p in sf.BASIS_PS),
+                 "proven": f"1e-14 (p+1)^1.5 ({math.ceil(float((bound / basis_proof.U).upper()))} u at p = "
+                           f"{sf.BASIS_PS[-1]})",
+                 "proof_seconds": median_seconds(prove_all_bases(), 5), "sampled_seconds": sampled_seconds})
+    log = CertificateLog(derivation="bench")
+    with mpmath.workdps(15):
+        sampled_seconds = median_seconds(lambda: float_paths.check_general_scattering_angle(log, sf), 5)
+    general = general_angle_proof.prove(sf)
+    rows.append({"function": "general_scattering_angle (mixed bound)", "boxes": general["boxes"],
+                 "proven": f"{math.ceil(float((general['angle'] / general_angle_proof.U).upper()))} u at arguments "
+                           "within 200 u of a body within 2u",
+                 "proof_seconds": median_seconds(lambda: general_angle_proof.certificate(CertificateLog(
+                     derivation="bench"), sf), 5), "sampled_seconds": sampled_seconds})
     total = sum(r["proof_seconds"] for r in rows)
     machine = f"{cpu_name()}, {platform.python_version()}, 2 cores (shared)"
     lines = ["# Proven float64 error bounds: what they cost the build", "",

@@ -246,23 +246,57 @@ def _concave_through_zero(value_of, derivative_of, x: FE) -> FE:
     return _library(value_of(x.v), slope * x.e, x.r, slope * x.a, sign=1)
 
 
+def _increasing(function):
+    """An increasing function on a ball from its values at the two ends: arb's evaluation at the midpoint with
+    a radius term would give exp of [-4e19, -3e4] as a ball of radius e^(2e19)."""
+    def on_ball(ball: arb) -> arb:
+        if not ball.is_finite():
+            return function(ball)
+        return function(arb(ball.lower())).union(function(arb(ball.upper())))
+    return on_ball
+
+
+_exp = _increasing(lambda a: a.exp())
+_expm1 = _increasing(lambda a: a.expm1())
+_tanh = _increasing(lambda a: a.tanh())
+
+
 def exp(x: FE) -> FE:
     """exp(x + D) = exp(x) exp(D): relative expm1(|D|) <= expm1(e_x)."""
-    return _library(x.v.exp(), _mag(_widen(x).exp()) * x.e, x.e.expm1(), arb(0), sign=1)
+    return _library(_exp(x.v), _mag(_exp(_widen(x))) * x.e, x.e.expm1(), arb(0), sign=1)
 
 
 def expm1(x: FE) -> FE:
-    return libm(lambda a: a.expm1(), lambda a: a.exp(), x)
+    """The absolute rule of :func:`libm`, and where x's error is purely relative (|x~ - x| <= r |x|) the relative
+    one: expm1(x (1 + t)) - expm1(x) is at most |x t| e^max(x, x(1+t)), and |expm1(x)| >= |x| e^min(x, 0), so the
+    relative change is at most r exp(max(x, 0) (1 + r) + |x| r); the smaller bound is kept."""
+    out = libm(_expm1, _exp, x)
+    if x.a == 0 and x.r < 1:      # a purely relative form is what the products and sqrt downstream keep
+        top = arb(x.v.upper())
+        growth = (arb(0) if not top > 0 else top * (1 + x.r)) + _mag(x.v) * x.r
+        relative = _library(_expm1(x.v), out.e, x.r * growth.exp(), arb(0))
+        if relative.r < 1:
+            out = FE(out.v, _min(out.e, relative.e), relative.r, relative.a)
+    return out
 
 
 def tanh(x: FE) -> FE:
     if x.sign > 0:
-        return _concave_through_zero(lambda a: a.tanh(), lambda a: a.sech() ** 2, x)
-    return libm(lambda a: a.tanh(), lambda a: a.sech() ** 2, x)
+        return _concave_through_zero(_tanh, _sech_squared, x)
+    return libm(_tanh, _sech_squared, x)
+
+
+def _sech_squared(a: arb) -> arb:
+    """tanh' = sech^2, decreasing in |a|: [0, sech(min |a|)^2] (a product: arb's power of a ball about 0 is NaN)."""
+    s = arb(_lower_abs(a)).sech()
+    return arb(0).union(s * s)
 
 
 def sin(x: FE) -> FE:
-    if x.sign > 0 and x.v <= arb.pi() / 2 and _widen(x) <= arb.pi() / 2:
+    """The relative rule for exact arguments in [0, pi/2] whose computed value stays in [0, pi]: sin is concave there
+    with sin 0 = 0, so sin(l x) is within |l - 1| sin(x) of sin(x) for l > 1 too (below l sin x, above the chord
+    to (pi, 0): (1 - (l - 1) x/(pi - x)) sin x, and x/(pi - x) <= 1)."""
+    if x.sign > 0 and x.v <= arb.pi() / 2 and _widen(x) <= arb.pi():
         return _concave_through_zero(lambda a: a.sin(), lambda a: a.cos(), x)
     return libm(lambda a: a.sin(), lambda a: a.cos(), x)
 
@@ -312,6 +346,14 @@ def hypot(x: FE, y: FE) -> FE:
     return _library(low.union(high), x.e + y.e, sign=1)
 
 
+def _fingerprint(x) -> tuple:
+    """Equal for two FE values with the same ball, bounds and sign (an id for anything else)."""
+    if not isinstance(x, FE) or not all(b.is_finite() for b in (x.v, x.e, x.r, x.a)):
+        return ("id", id(x))
+    exact = lambda b: (b.mid().man_exp(), b.rad().man_exp())  # noqa: E731
+    return (exact(x.v), exact(x.e), exact(x.r), exact(x.a), x.sign)
+
+
 class ErrorContext:
     """The float64 context (``suslov.kernel.contexts.FLOAT``) as error propagation, operation by operation.
 
@@ -322,9 +364,11 @@ class ErrorContext:
         self._memo = {}
 
     def _once(self, name, function, *args):
-        key = (name,) + tuple(id(a) for a in args)
+        # keyed by the values, not the objects: ``expm1(2*g - 2*h)`` written twice in the emitted text builds two
+        # equal FE arguments, and the float computation returns the same number for both (so their product is a square)
+        key = (name,) + tuple(_fingerprint(a) for a in args)
         if key not in self._memo:
-            self._memo[key] = (function(*args), args)      # args kept: their ids stay theirs
+            self._memo[key] = (function(*args), args)      # args kept: ids of non-FE arguments stay theirs
         return self._memo[key][0]
 
     def tanh(self, x):

@@ -98,16 +98,22 @@ def prove_omega(module) -> Proof:
                  "the exact one")
 
 
-def half_pi_parts(r: FE) -> tuple:
+def half_pi_parts(r: FE, upper_branch: bool | None = None) -> tuple:
     """``phase.half_pi_parts`` on r = |p - 2 round(p/2)| (exact in float64): s = sin(0.5 pi r),
-    c = sin(0.5 pi (1 - r)) for r >= 0.5 else cos(0.5 pi r), with np.pi = fl(pi)."""
+    c = sin(0.5 pi (1 - r)) for r >= 0.5 else cos(0.5 pi r), with np.pi = fl(pi).  ``upper_branch`` is the branch of
+    a box of :func:`r_cover` (a ball's radius is rounded up, so a box [1/2, 1] reaches just below 1/2: those points
+    are covered by the box below, with the other branch)."""
     half_pi = FE(arb.pi() / 2, arb.pi() / 2 * U, U)          # 0.5 * np.pi: fl(pi)/2, relative error <= u
     s = sin(half_pi * r)
-    if r.v >= 0.5:
-        return s, sin(half_pi * (1.0 - r))
-    if r.v < 0.5:
+    # 1 - r is exact for r in [1/2, 1] (Sterbenz's lemma) and >= 0
+    complement = FE((1 - r.v).nonnegative_part(), 0, 0, 0, sign=1) if r.e == 0 else 1.0 - r
+    if upper_branch is None:
+        upper_branch = True if r.v >= 0.5 else (False if r.v < 0.5 else None)
+    if upper_branch:
+        return s, sin(half_pi * complement)
+    if upper_branch is False:
         return s, cos(half_pi * r)
-    return s, join(sin(half_pi * (1.0 - r)), cos(half_pi * r))    # a box touching 1/2: either branch
+    return s, join(sin(half_pi * complement), cos(half_pi * r))    # a box touching 1/2: either branch
 
 
 def join(a: FE, b: FE) -> FE:
@@ -124,14 +130,19 @@ def r_boxes(n: int = 32) -> list:
     return [box(j / n, (j + 1) / n) for j in range(n)]
 
 
+def r_cover(n: int = 32) -> list:
+    """(box, branch of half_pi_parts) covering r in [0, 1]; n even, so no box straddles 1/2."""
+    return [(box(j / n, (j + 1) / n), j >= n // 2) for j in range(n)]
+
+
 def prove_scattering_angle(module) -> Proof:
     with ctx.workprec(PREC):
         worst, boxes = arb(0), 0
         rho_x = (1 + U) ** 3 - 1          # x = fl(fl(fl(pi) |p|) / (2d)): three roundings, 2d exact
         for x in x_boxes():
             fx = FE(x, _mag(x) * rho_x, rho_x, 0)
-            for r in r_boxes():
-                s, c = half_pi_parts(FE(r))
+            for r, upper in r_cover():
+                s, c = half_pi_parts(FE(r), upper)
                 angle = module._scattering_angle(ErrorContext(), fx, s, c)
                 worst = max(worst, angle.e, key=lambda a: a.upper())
                 boxes += 1
