@@ -28,7 +28,7 @@ FORMULAS = sf.active_formulas()
 @pytest.fixture(scope="module")
 def bounds():
     result = proof.prove(FORMULAS)
-    return {key: float(value.upper()) for key, value in result.items() if key in ("h", "g", "Y", "angle")}
+    return {key: float(value.upper()) for key, value in result.items() if key in ("h", "g", "Y", "Y absolute", "angle")}
 
 
 def held_out_bodies():
@@ -72,7 +72,7 @@ def test_stage1_the_float_arguments_are_within_the_proven_relative_bounds(bounds
         Y_exact = abs(mpmath.sqrt(mpmath.mpc(a, b)).imag) / mpmath.mpf(float(lam))
         assert abs(h - h_exact) <= bounds["h"] * h_exact
         assert abs(g - g_exact) <= bounds["g"] * g_exact
-        assert abs(Y - Y_exact) <= bounds["Y"] * Y_exact + 1e-225
+        assert abs(Y - Y_exact) <= bounds["Y"] * Y_exact + bounds["Y absolute"]
 
 
 def test_the_proven_bounds_are_those_stated(bounds):

@@ -21,13 +21,14 @@ entries are within relative ``2u (1 + u)`` of the given ones.  Two stages, each 
   difference in the gap.  The operation counts are those of :func:`invariants_model`, checked bit for bit against
   the emitted ``_gauss_invariants``.
 * **Stage 2** (h, g, s, c -> angle): the emitted ``_general_angle`` walked on FE values over boxes of
-  ``(h, gamma = g/h)``, h from 2^-42 to 1e300 and gamma from 2^-24 to 1 + 2^-40 (stage 1's domain gives
+  ``(h, gamma = g/h)``, h from 2^-42 to 2^46 and gamma from 2^-24 to 1 + 2^-45 (stage 1's domain gives
   gamma >= D/8 >= 2^-23), with the inputs exact and ``s, c`` from the walk of ``half_pi_parts``.  The arguments
   ``2g - 2h``, ``2g - 4h``, ``-2g`` of the exponentials are intersected with their exact ranges over the box
   (``2 h (gamma - 1)`` ...): the independent balls of g and h would lose g <= h.
 
-Domain: entries scaled by the largest modulus with I11, I22 >= 2^-20, and h = pi U/2 <= 1e300 (the run time caps h
-there).  Assumption shared with the other proofs: libm within 4 ulp.
+Domain: entries scaled by the largest modulus with I11, I22 >= 2^-20, and h = pi U/2 <= 7e13 (below 2^46 with the
+relative error of h: closer to the equilibrium, 2(g - h) computed from g and h with their relative errors is no longer
+small, and the walk next to g = h would need boxes of 2h(g/h - 1) narrower than float64 can tell).  Assumption shared with the other proofs: libm within 4 ulp.
 """
 from __future__ import annotations
 
@@ -129,7 +130,12 @@ def stage1() -> dict:
     rho_h = (1 + theta_u) * (1 + U) ** 3 - 1
     rho_g = (1 + theta_gap) * (1 + U) ** 3 - 1
     rho_y = (1 + theta_y) * (1 + U) - 1
-    return {"h": rho_h, "g": rho_g, "Y": rho_y, "Y absolute": worst["absolute"], "boxes": len(boxes)}
+    # stage 2's cover must hold every computed (h, g/h): exact g/h in [D/8, 1] with D >= 2^-20, h >= (pi/2) 2^-41
+    if not ((1 + rho_g) / (1 - rho_h) <= GAMMA_RANGE[1] and arb(2) ** -23 * (1 - rho_g) / (1 + rho_h) >= GAMMA_RANGE[0]
+            and arb.pi() / 2 * arb(2) ** -41 * (1 - rho_h) >= H_RANGE[0]):
+        raise BoundFailure("stage 1's relative bounds leave the (h, g/h) domain that stage 2 covers")
+    # Y's absolute part is in units of sqrt(M)/lam: M <= 2^20 (D >= 2^-20) and 1/lam <= 2^88 (h <= 2^46, U >= 2^-41)
+    return {"h": rho_h, "g": rho_g, "Y": rho_y, "Y absolute": worst["absolute"] * arb(2) ** 98, "boxes": len(boxes)}
 
 
 def _lower(fe: FE) -> arb:
@@ -312,15 +318,17 @@ def certificate(log: CertificateLog, module) -> Certificate:
             rho_u = {k: math.ceil(float((proof[k] / U).upper())) for k in ("h", "g", "Y")}
             same, points = same_operations(module)
             ok = angle_u <= STATED_U and max(rho_u.values()) <= STATED_RHO_U and same
+            y_absolute = float(proof["Y absolute"].upper())
+            ok = ok and y_absolute < 1e-190
             detail = (f"proven: angle within ${angle_u} u$ of the exact one at the computed $h$, $g$, $Y$; these within "
-                      f"relative ${rho_u['h']} u$, ${rho_u['g']} u$, ${rho_u['Y']} u$ (and $Y$ absolute $1e-225$) of the "
-                      f"exact ones; run-time operations as analysed, bit for bit at {points} bodies: "
-                      f"{'yes' if same else 'no'}")
+                      f"relative ${rho_u['h']} u$, ${rho_u['g']} u$, ${rho_u['Y']} u$ (and $Y$ absolute "
+                      f"${y_absolute:.0e}$, underflow) of the exact ones; run-time operations as analysed, bit for bit "
+                      f"at {points} bodies: {'yes' if same else 'no'}")
             boxes = proof["boxes"]
         except BoundFailure as failure:
             ok, detail, boxes = False, f"no bound: {failure}", 0
     method = METHOD.format(n=boxes) + (" (domain: entries scaled by the largest modulus with $I11 >= 2^(-20)$, "
-                                       "$I22 >= 2^(-20)$, and $pi U/2 <= 2^46$; stage 1 by operation counts and a walk "
+                                       "$I22 >= 2^(-20)$, and $pi U/2 <= 7e13$; stage 1 by operation counts and a walk "
                                        "of the normalised lengths over boxes of $a/abs(w^2)$, stage 2 the emitted angle "
                                        "over boxes of $(h, g/h)$; libm calls within 4 ulp)")
     return log.record(Certificate(CLAIM, "round trip", method, Outcome.PASS if ok else Outcome.FAIL, elapsed[0], boxes,

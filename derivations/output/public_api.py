@@ -292,7 +292,7 @@ SECTIONS = [
     exactly.  Evaluated in a form with no cancellation and no overflow (``_general_angle``); the
     entries broadcast like NumPy arrays, I11, I22 > 0, not I13 = I23 = 0 (the equilibrium).
     Error bound, proven from the run-time code (rounding model, libm calls within 4 ulp) for
-    I11, I22 >= 2^-20 times the largest entry and pi U/2 <= 2^46, in mixed form: the result is within
+    I11, I22 >= 2^-20 times the largest entry and pi U/2 <= 7e13, in mixed form: the result is within
     400 u (u = 2^-53) of the exact angle at h, g, Y within relative 200 u of those (h = pi U/2,
     g = pi (U - X)/2, ``w_- = X + i Y``) of a body whose entries are within relative 2u (1 + u) of the
     given ones.  The angle depends on Y modulo 2, so the forward error grows with ``|Y|``; sampled
