@@ -64,3 +64,15 @@ def circle_monodromy(matrix, center, radius, dim):
 
     sol = solve_ivp(rhs, (0, 2 * np.pi), np.eye(dim, dtype=complex).ravel(), method="DOP853", rtol=1e-12, atol=1e-12)
     return sol.y[:, -1].reshape(dim, dim)
+
+
+def mutated_function(module, name: str, old: str, new: str):
+    """``module.name`` recompiled with one text change (a seeded fault), in the module's namespace; for
+    ``monkeypatch.setattr(module, name, ...)``.  The original text must be in the source."""
+    import inspect
+
+    source = inspect.getsource(getattr(module, name))
+    assert old in source, f"mutation site not in {module.__name__}.{name}: {old!r}"
+    namespace = dict(vars(module))
+    exec(source.replace(old, new), namespace)
+    return namespace[name]

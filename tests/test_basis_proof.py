@@ -8,13 +8,13 @@
 * The Parseval bound on the coefficients holds for the run-time coefficients, and the proven bound is within the
   stated one up to p = 201.
 """
-import inspect
 
 import mpmath
 import numpy as np
 import pytest
 
 import suslov as sf
+from conftest import mutated_function
 from derivations.output import basis_proof
 from suslov.kernel import phase, trig_series
 from suslov.kernel.phase import PHASE_LIMIT
@@ -43,14 +43,6 @@ def test_proven_bound_holds_at_held_out_hard_points(bounds, p, d):
         assert gap <= bound, (t, float(gap), bound)
 
 
-def _mutated(module, function_name: str, old: str, new: str):
-    source = inspect.getsource(getattr(module, function_name))
-    assert old in source
-    namespace = dict(vars(module))
-    exec(source.replace(old, new), namespace)
-    return namespace[function_name]
-
-
 @pytest.mark.parametrize("module, name, old, new", [
     (phase, "reduce_scalar", "    low += q2 * b1\n", ""),                                     # a lost double-double term
     (phase, "reduce_scalar", "    h -= k * _C2\n    k *= _C3\n    low -= k\n    h += low\n",
@@ -63,7 +55,7 @@ def _mutated(module, function_name: str, old: str, new: str):
 ])
 def test_a_seeded_change_to_one_operation_is_rejected(monkeypatch, module, name, old, new):
     assert basis_proof.same_operations(FORMULAS, 7)[0]
-    monkeypatch.setattr(module, name, _mutated(module, name, old, new))
+    monkeypatch.setattr(module, name, mutated_function(module, name, old, new))
     assert not basis_proof.same_operations(FORMULAS, 7)[0]
 
 
@@ -75,7 +67,7 @@ def test_a_weaker_tan_or_a_far_phase_at_float_precision_grows_the_bound_or_fails
 
 
 def test_far_phase_rounded_before_the_sine_is_caught(monkeypatch):
-    careful = _mutated(runtime_basis, "careful_phase", "flint.arb(angle).sin_cos()",
+    careful = mutated_function(runtime_basis, "careful_phase", "flint.arb(angle).sin_cos()",
                        "flint.arb(float(angle)).sin_cos()")
     monkeypatch.setattr(runtime_basis, "careful_phase", careful)
     assert not basis_proof.far_phase_ok(3)

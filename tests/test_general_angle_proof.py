@@ -17,6 +17,7 @@ import pytest
 from flint import ctx
 
 import suslov as sf
+from conftest import mutated_function
 from derivations.output import general_angle_proof as proof
 from derivations.output.float_bounds import U
 from suslov.kernel import gauss_angle, phase
@@ -80,16 +81,6 @@ def test_the_proven_bounds_are_those_stated(bounds):
     assert max(bounds["h"], bounds["g"], bounds["Y"]) <= proof.STATED_RHO_U * 2**-53
 
 
-def _mutated(module, name, old, new):
-    import inspect
-
-    source = inspect.getsource(getattr(module, name))
-    assert old in source
-    namespace = dict(vars(module))
-    exec(source.replace(old, new), namespace)
-    return namespace[name]
-
-
 @pytest.mark.parametrize("module, name, old, new", [
     (gauss_angle, "float_lengths", "gap = 2.0 * c2 / ((2.0 * U2 - a + modulus) * (U + X))",
      "gap = 2.0 * c2 / ((2.0 * U2 + (modulus - a)) * (U + X))"),                          # a reordered sum
@@ -99,7 +90,7 @@ def _mutated(module, name, old, new):
 ])
 def test_a_seeded_change_to_one_operation_is_rejected(monkeypatch, module, name, old, new):
     assert proof.same_operations(FORMULAS)[0]
-    monkeypatch.setattr(module, name, _mutated(module, name, old, new))
+    monkeypatch.setattr(module, name, mutated_function(module, name, old, new))
     assert not proof.same_operations(FORMULAS)[0]
 
 

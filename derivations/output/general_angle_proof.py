@@ -38,7 +38,7 @@ import numpy as np
 from flint import arb, ctx
 
 from derivations.core.certificates import Certificate, CertificateLog, Outcome, stopwatch
-from derivations.output.float_bounds import FE, LIBM_REL, METHOD, U, BoundFailure, ErrorContext, _fingerprint, hypot
+from derivations.output.float_bounds import FE, METHOD, U, BoundFailure, ErrorContext, _fingerprint, hypot
 from derivations.output.float_bounds import sqrt as fe_sqrt
 from derivations.output.float_proofs import PREC, box, half_pi_parts
 

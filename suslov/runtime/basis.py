@@ -26,7 +26,7 @@ import numpy as np
 
 from suslov.kernel import fourier, phase, trig_series
 from suslov.kernel.contexts import FLOAT
-from suslov.kernel.validate import DPS_RANGE, mp_dps, mp_real, odd_p, precision, real_array
+from suslov.kernel.validate import DPS_RANGE, mp_dps, mp_real, odd_p, real_array
 from suslov.recipes.rings import AcbBasisRing
 
 from .integrals import CACHE_SIZE
