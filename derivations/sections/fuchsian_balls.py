@@ -31,7 +31,7 @@ def monodromy_summary(body: tuple) -> dict:
     from suslov.validated import monodromy  # python-flint balls; the run-time code, exactly as users call it
 
     with stopwatch() as elapsed:
-        mono = monodromy(*body, digits=DIGITS)
+        mono = monodromy(*body, dps=DIGITS)
     identity = acb_mat([[1, 0, 0], [0, 1, 0], [0, 0, 1]])
     at_i = mono.matrices.get("x=i")
     return {"verdict": mono.verdict, "liouvillian": mono.liouvillian, "radius": mono.radius,
