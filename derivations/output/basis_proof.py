@@ -53,7 +53,7 @@ from derivations.output.float_bounds import ETA, FE, LIBM_REL, METHOD, U, BoundF
 from derivations.output.float_proofs import PREC, box, t_boxes
 
 D_RANGE = (1e-3, 1e3)
-SERIES_RADIUS = arb("1e-17")          # series_float: ball radius of every coefficient (checked at run time)
+SERIES_RADIUS = arb(1e-17)            # series_float: ball radius <= mpf(1e-17), the float 1e-17 (checked at run time)
 FAR_RADIUS = arb(2) ** -70            # suslov.runtime.basis.FAR_RADIUS
 TINY_T = arb(2) ** -960               # below it Dekker's product may underflow (e_q >= -10 on the domain)
 STATED_PER_P = 1e-14                  # gamma_basis's docstring: absolute 1e-14 (p + 1)^1.5
