@@ -103,7 +103,7 @@ MUTANTS = [
     ("runtime-special-case-turn", R + "bodies.py", "if I23 > 0:", "if I23 < 0:", "verify"),
     ("template-basis-call", T, "{{ f.call }}", "{{ f.call.replace('BASIS_PS, t, p, d)', 'BASIS_PS, -t, p, d)') }}",
      "build"),
-    ("runtime-dps-unchecked", R + "angle.py", '    dps = precision("dps", dps)\n    with mpmath.workdps(dps + 10):',
+    ("runtime-dps-unchecked", R + "angle.py", '    dps = mp_dps(dps)\n    with mpmath.workdps(dps + 10):',
      '    with mpmath.workdps(dps + 10):', "verify"),
     # the emitted module itself (--verify of the committed tree)
     ("emitted-omega-sign", G, "k1 = -c*p/d", "k1 = c*p/d", "verify"),
