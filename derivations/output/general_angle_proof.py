@@ -125,7 +125,8 @@ def stage1() -> dict:
     theta_u = (2 - (1 - theta_u2).sqrt()) * (1 + U) - 1
     theta_d1 = (1 + 2 * theta_u2 + theta_f + eps_c * (1 + theta_f) + TINY) * (1 + U) - 1       # 2U^2 - a
     theta_d2 = (1 + _top(theta_d1, theta_m)) * (1 + U) - 1                                        # + modulus
-    theta_d3 = (1 + _top(theta_u, theta_x)) * (1 + U) - 1                                         # U + X
+    # U + X: X's absolute part (units of sqrt(M) <= 2^10) against U + X >= U >= 2^-41
+    theta_d3 = (1 + _top(theta_u, theta_x) + worst["absolute"] * arb(2) ** 51) * (1 + U) - 1
     theta_gap = (1 + theta_c2) * (1 + U) / ((1 - theta_d2) * (1 - theta_d3) * (1 - U)) - 1
     rho_h = (1 + theta_u) * (1 + U) ** 3 - 1
     rho_g = (1 + theta_gap) * (1 + U) ** 3 - 1
