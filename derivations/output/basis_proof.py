@@ -42,6 +42,7 @@ float proofs: libm and NumPy's tan, exp, expm1 within 4 ulp.
 """
 from __future__ import annotations
 
+import functools
 import math
 from fractions import Fraction
 
@@ -49,7 +50,18 @@ import numpy as np
 from flint import arb, ctx
 
 from derivations.core.certificates import Certificate, CertificateLog, Outcome, stopwatch
-from derivations.output.float_bounds import ETA, FE, LIBM_REL, METHOD, U, BoundFailure, ErrorContext, _mag
+from derivations.output.float_bounds import (
+    ETA,
+    FE,
+    LIBM_REL,
+    METHOD,
+    U,
+    BoundFailure,
+    ErrorContext,
+    _mag,
+    gamma,
+    largest,
+)
 from derivations.output.float_proofs import PREC, box, t_boxes
 
 D_RANGE = (1e-3, 1e3)
@@ -61,14 +73,6 @@ STATED_PER_P = 1e-14                  # gamma_basis's docstring: absolute 1e-14 
 
 def stated(p: int) -> float:
     return STATED_PER_P * (p + 1) ** 1.5
-
-
-def gamma(n) -> arb:
-    return n * U / (1 - n * U)
-
-
-def _upper(values) -> arb:
-    return max(values, key=lambda a: a.upper())
 
 
 def significant_bits(x: float) -> int:
@@ -114,16 +118,18 @@ def reference_cos_sin(angle: float) -> tuple:
 # ---------------------------------------------------------------- the bounds
 
 
+@functools.cache
 def tanh_sech_error() -> tuple:
     """Absolute error bounds of FLOAT.tanh_sech over every t (boxes of |t| to 1024; beyond, every float operation
     gives what it gives at 1024 and the exact values move by less than 4 e^-1024), and the number of boxes."""
     boxes = t_boxes(step=1 / 16)
     worst_t, worst_s = arb(0), arb(0)
-    for t in boxes:
-        T, S = ErrorContext().tanh_sech(FE(t))
-        worst_t, worst_s = _upper([worst_t, T.e]), _upper([worst_s, S.e])
-    tail = 4 * arb(-1024).exp()
-    return worst_t + tail, worst_s + tail, len(boxes)
+    with ctx.workprec(PREC):     # cached: the same for every p
+        for t in boxes:
+            T, S = ErrorContext().tanh_sech(FE(t))
+            worst_t, worst_s = largest(worst_t, T.e), largest(worst_s, S.e)
+        tail = 4 * arb(-1024).exp()
+        return worst_t + tail, worst_s + tail, len(boxes)
 
 
 def power_errors(p: int, e1: arb) -> list:
@@ -139,7 +145,7 @@ def series_error(p: int, powers: list) -> arb:
     """|f~ - f| for one of the nine series: coefficient errors, power errors, the dot product's rounding."""
     n = 2 * (p + 1)
     l1 = arb(4 * p + 2).sqrt()                              # Parseval (module docstring)
-    e_max = _upper(powers)
+    e_max = largest(*powers)
     coefficients = n * SERIES_RADIUS + 2 * U * (l1 + n * SERIES_RADIUS)      # sum |c~_k - c_k|
     return coefficients * (1 + e_max) + l1 * e_max + gamma(n) * (l1 + coefficients) * (1 + e_max)
 
@@ -178,7 +184,7 @@ def reduction_error(p_max: int) -> arb:
     # |t| < 2^-960: k = 0 and every intermediate is at most 16 |q t| + 16 ETA; the phase itself is below |q t| (1 + u)
     q_max = arb(p_max) / arb(D_RANGE[0]) * (1 + U)
     tiny = 32 * q_max * TINY_T + 32 * ETA
-    return _upper([total, tiny])
+    return largest(total, tiny)
 
 
 def u_boxes() -> list:
@@ -190,18 +196,27 @@ def u_boxes() -> list:
     return boxes
 
 
-def cos_sin_error(angle_error: arb, libm_rel: arb = LIBM_REL) -> tuple:
-    """(bound on |c~ - cos phi| and |s~ - sin phi|, boxes): the angle error, tan's rounding rho moving the angle by
-    at most rho/(1 - rho) (plus 2 ETA where tan(a/2) is subnormal), the rational functions' rounding by FE."""
+@functools.cache
+def rational_error() -> tuple:
+    """(rounding of the rational functions cos = (1 - u^2)/(1 + u^2), sin = 2u/(1 + u^2) by FE over the u boxes,
+    boxes); the same for every p, so cached."""
     worst = arb(0)
     boxes = u_boxes()
-    for u in boxes:
-        x = FE(u, 0, 0, 0)
-        u2 = x * x
-        inverse = 1.0 / (u2 + 1.0)
-        c, s = (1.0 - u2) * inverse, (2.0 * x) * inverse
-        worst = _upper([worst, c.e, s.e])
-    return angle_error + libm_rel / (1 - libm_rel) + 2 * ETA + worst, len(boxes)
+    with ctx.workprec(PREC):
+        for u in boxes:
+            x = FE(u, 0, 0, 0)
+            u2 = x * x
+            inverse = 1.0 / (u2 + 1.0)
+            c, s = (1.0 - u2) * inverse, (2.0 * x) * inverse
+            worst = largest(worst, c.e, s.e)
+    return worst, len(boxes)
+
+
+def cos_sin_error(angle_error: arb, libm_rel: arb = LIBM_REL) -> tuple:
+    """(bound on |c~ - cos phi| and |s~ - sin phi|, boxes): the angle error, tan's rounding rho moving the angle by
+    at most rho/(1 - rho) (plus 2 ETA where tan(a/2) is subnormal), the rational functions' rounding."""
+    worst, boxes = rational_error()
+    return angle_error + libm_rel / (1 - libm_rel) + 2 * ETA + worst, boxes
 
 
 def rows_error(phase: arb, series: arb) -> arb:
@@ -219,8 +234,8 @@ def prove(p: int) -> dict:
         series = series_error(p, powers)
         near_phase, u_count = cos_sin_error(reduction_error(p))
         far_phase = 2 * U + FAR_RADIUS
-        near = _upper([series, rows_error(near_phase, series)])
-        far = _upper([series, rows_error(far_phase, series)])
+        near = largest(series, rows_error(near_phase, series))
+        far = largest(series, rows_error(far_phase, series))
         return {"near": near, "far": far, "boxes": t_count + u_count, "series": series}
 
 

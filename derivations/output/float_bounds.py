@@ -71,6 +71,16 @@ def _min(a: arb, b: arb) -> arb:
     return a if a < b else (b if b < a else arb(min(a.upper(), b.upper())))
 
 
+def largest(*values: arb) -> arb:
+    """An exact upper bound of all the balls (the worst bound over boxes)."""
+    return arb(max(value.upper() for value in values))
+
+
+def gamma(n) -> arb:
+    """Higham's gamma_n = n u/(1 - n u): n roundings, (1 + delta_1) ... (1 + delta_n) within 1 +- gamma_n."""
+    return n * U / (1 - n * U)
+
+
 class FE:
     """A float64 value over a box: exact values ``v``, absolute bound ``e``, mixed bound ``r |x| + a``."""
 

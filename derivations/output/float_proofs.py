@@ -126,10 +126,6 @@ def x_boxes() -> list:
     return [box(i / 8, (i + 1) / 8) for i in range(64)] + [box(2.0**k, 2.0 ** (k + 1)) for k in range(3, 10)]
 
 
-def r_boxes(n: int = 32) -> list:
-    return [box(j / n, (j + 1) / n) for j in range(n)]
-
-
 def r_cover(n: int = 32) -> list:
     """(box, branch of half_pi_parts) covering r in [0, 1]; n even, so no box straddles 1/2."""
     return [(box(j / n, (j + 1) / n), j >= n // 2) for j in range(n)]

@@ -32,13 +32,14 @@ small, and the walk next to g = h would need boxes of 2h(g/h - 1) narrower than 
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 from flint import arb, ctx
 
 from derivations.core.certificates import Certificate, CertificateLog, Outcome, stopwatch
-from derivations.output.float_bounds import FE, METHOD, U, BoundFailure, ErrorContext, _fingerprint, hypot
+from derivations.output.float_bounds import FE, METHOD, U, BoundFailure, ErrorContext, _fingerprint, gamma, hypot, largest
 from derivations.output.float_bounds import sqrt as fe_sqrt
 from derivations.output.float_proofs import PREC, box, half_pi_parts
 
@@ -49,10 +50,6 @@ TINY = arb(2) ** -800            # underflow of the non-maximal I13, I23 (absolu
 UNDERFLOW = arb(2) ** -1000      # the same, relative to D >= 2^-20 and to I13^2 + I23^2 >= 1
 STATED_U = 400                   # the docstring's E: within 400 u (about 4.5e-14)
 STATED_RHO_U = 200               # the docstring's rho: within 200 u relative
-
-
-def gamma(n) -> arb:
-    return (1 + U) ** n - 1
 
 
 # ---------------------------------------------------------------- stage 1
@@ -82,7 +79,7 @@ def _lengths(a: FE, b: FE, branch: str):
 
 def _fold(fe: FE) -> FE:
     """The mixed bound r |x| + a as a relative one, r + a/min|x|, where the box keeps x away from 0."""
-    low = _lower(fe)
+    low = fe.low
     return FE(fe.v, fe.e, fe.r + fe.a / low, 0, fe.sign) if low > 0 and fe.a > 0 else fe
 
 
@@ -111,22 +108,22 @@ def stage1() -> dict:
         b_hat = FE(beta, 0, theta_b, TINY, sign=1)
         for path in (("+", "-") if branch == "?" else (branch,)):
             modulus, X, Y = _lengths(a_hat, b_hat, path)
-            worst["M"] = _top(worst["M"], modulus.e)          # the exact modulus is 1: absolute = relative
+            worst["M"] = largest(worst["M"], modulus.e)          # the exact modulus is 1: absolute = relative
             for name, fe in (("X", X), ("Y", Y)):
                 if branch == "?":
                     # the computed branch may differ from the exact sign's; X, Y both within [sqrt((1-e)/2), sqrt((1+e)/2)]
                     e = arb(max(abs(lo), abs(hi)))
                     spread = ((1 + e) / 2).sqrt() - ((1 - e) / 2).sqrt()
-                    worst[name] = _top(worst[name], (fe.e + spread) / ((1 - e) / 2).sqrt())
+                    worst[name] = largest(worst[name], (fe.e + spread) / ((1 - e) / 2).sqrt())
                 else:
-                    worst[name] = _top(worst[name], fe.r)
-                    worst["absolute"] = _top(worst["absolute"], fe.a)    # underflow of b (units of sqrt(M) <= 1)
+                    worst[name] = largest(worst[name], fe.r)
+                    worst["absolute"] = largest(worst["absolute"], fe.a)    # underflow of b (units of sqrt(M) <= 1)
     theta_x, theta_y, theta_m = worst["X"], worst["Y"], worst["M"]
     theta_u = (2 - (1 - theta_u2).sqrt()) * (1 + U) - 1
     theta_d1 = (1 + 2 * theta_u2 + theta_f + eps_c * (1 + theta_f) + TINY) * (1 + U) - 1       # 2U^2 - a
-    theta_d2 = (1 + _top(theta_d1, theta_m)) * (1 + U) - 1                                        # + modulus
+    theta_d2 = (1 + largest(theta_d1, theta_m)) * (1 + U) - 1                                        # + modulus
     # U + X: X's absolute part (units of sqrt(M) <= 2^10) against U + X >= U >= 2^-41
-    theta_d3 = (1 + _top(theta_u, theta_x) + worst["absolute"] * arb(2) ** 51) * (1 + U) - 1
+    theta_d3 = (1 + largest(theta_u, theta_x) + worst["absolute"] * arb(2) ** 51) * (1 + U) - 1
     theta_gap = (1 + theta_c2) * (1 + U) / ((1 - theta_d2) * (1 - theta_d3) * (1 - U)) - 1
     rho_h = (1 + theta_u) * (1 + U) ** 3 - 1
     rho_g = (1 + theta_gap) * (1 + U) ** 3 - 1
@@ -137,14 +134,6 @@ def stage1() -> dict:
         raise BoundFailure("stage 1's relative bounds leave the (h, g/h) domain that stage 2 covers")
     # Y's absolute part is in units of sqrt(M)/lam: M <= 2^20 (D >= 2^-20) and 1/lam <= 2^88 (h <= 2^46, U >= 2^-41)
     return {"h": rho_h, "g": rho_g, "Y": rho_y, "Y absolute": worst["absolute"] * arb(2) ** 98, "boxes": len(boxes)}
-
-
-def _lower(fe: FE) -> arb:
-    return arb(fe.v.lower()) if fe.v > 0 else arb(0)
-
-
-def _top(a: arb, b: arb) -> arb:
-    return arb(max(a.upper(), b.upper()))
 
 
 # ---------------------------------------------------------------- stage 2
@@ -190,11 +179,17 @@ def angle_on_box(module, h_lo: float, h_hi: float, g_lo: float, g_hi: float) -> 
               (lambda h, g: -2 * g, hull(*(-2 * x * y for x, y in ends))),
               (lambda h, g: -2 * h, hull(-2 * H0, -2 * H1))]
     worst = arb(0)
-    for r, upper in ((box(0, 0.5), False), (box(0.5, 1), True)):
-        s, c = half_pi_parts(FE(r), upper)
+    for s, c in _half_pi_branches():
         angle = module._general_angle(RelatedContext(h, g, ranges), h, g, s, c)
-        worst = _top(worst, angle.e)
+        worst = largest(worst, angle.e)
     return worst
+
+
+@functools.cache
+def _half_pi_branches() -> tuple:
+    """(s, c) of ``half_pi_parts`` on r in [0, 1/2] and in [1/2, 1] (the same for every box, so walked once)."""
+    with ctx.workprec(PREC):
+        return tuple(half_pi_parts(FE(r), upper) for r, upper in ((box(0, 0.5), False), (box(0.5, 1), True)))
 
 
 def stage2(module, target_u: float = STATED_U) -> tuple:
@@ -230,7 +225,7 @@ def stage2(module, target_u: float = STATED_U) -> tuple:
     g_edges = [GAMMA_RANGE[0] * 2.0 ** (4 * k) for k in range(0, 6)] + [GAMMA_RANGE[1]]
     for h_lo, h_hi in zip(h_edges, h_edges[1:]):
         for g_lo, g_hi in zip(g_edges, g_edges[1:]):
-            worst = _top(worst, cover(h_lo, h_hi, g_lo, g_hi, 0))
+            worst = largest(worst, cover(h_lo, h_hi, g_lo, g_hi, 0))
     return worst, walked[0]
 
 
