@@ -62,7 +62,13 @@ def combination(coefficients: np.ndarray, w1: np.ndarray, w2: np.ndarray, g: np.
         big = np.where(first, a, b)
         safe = np.where(big == 0, 1.0, big)
         r = np.where(first, b, a) / safe
-        c = coefficients.T @ g[:, start:start + block]  # (n+1, m)
+        # c_k = ((a_0k g_0 + a_1k g_1) + a_2k g_2) ...: elementwise, in this one order, not a BLAS product,
+        # whose summation order and FMA use depend on the CPU OpenBLAS detects (the build's bit-for-bit
+        # check of first_integral against its analysed sequence failed on an AMD EPYC for that reason)
+        gb = g[:, start:start + block]
+        c = np.multiply.outer(coefficients[0], gb[0])   # (n+1, N)
+        for i in range(1, coefficients.shape[0]):
+            c += np.multiply.outer(coefficients[i], gb[i])
         c = np.where(first, c, c[::-1])
         h = c[n].copy()
         for k in range(n - 1, -1, -1):
