@@ -37,6 +37,7 @@ class Body:
     u: np.ndarray                # omega = lam (u tanh(lam t) + v sech(lam t)) in the paper's frame
     v: np.ndarray
     rate: float                  # lam
+    exact: object = None         # the body as written (suslov.simulator.exact.ExactBody): the exact effects' body
 
     @property
     def odd_integer_p(self) -> int | None:
@@ -92,10 +93,11 @@ def tensor_from_pd(p: float, d: float) -> np.ndarray:
     return np.array([[d * d + 1.0, 0.0, 0.0], [0.0, 1.0, i23], [0.0, i23, i23 * i23 + 1.0]])
 
 
-def make_body(tensor=None, p=None, d=None, energy=None, tol=1e-9) -> Body:
+def make_body(tensor=None, p=None, d=None, energy=None, tol=1e-9, exact=None) -> Body:
     """Build a :class:`Body` from a tensor or from (p, d); ``energy`` fixes the rate (default rate 1).
 
-    Raises ValueError naming the offending quantity.
+    ``exact``: the body as the user wrote it (:class:`suslov.simulator.exact.ExactBody`), for the exact
+    effects; the floats here drive the numerics.  Raises ValueError naming the offending quantity.
     """
     if tensor is None:
         if p is None or d is None:
@@ -124,9 +126,9 @@ def make_body(tensor=None, p=None, d=None, energy=None, tol=1e-9) -> Body:
         r = math.sqrt(I11 * I22)
         u = np.array([-I11 * I22 * I23 / D, I11 * I22 * I13 / D])
         v = np.array([I22 * I13 * r / D, I11 * I23 * r / D])
-    body = Body(R, tensor, (I11, I22, I13, I23), special, p_val, d_val, u, v, 1.0)
+    body = Body(R, tensor, (I11, I22, I13, I23), special, p_val, d_val, u, v, 1.0, exact)
     if energy is not None:
         if not (math.isfinite(energy) and energy > 0):
             raise ValueError(f"energy={energy!r}: must be finite and > 0")
-        body = Body(R, tensor, body.entries, special, p_val, d_val, u, v, math.sqrt(energy / body.energy()))
+        body = Body(R, tensor, body.entries, special, p_val, d_val, u, v, math.sqrt(energy / body.energy()), exact)
     return body

@@ -136,26 +136,51 @@ def step_angle_general_closed_form(run: Run):
 
 
 def step_angle_enclosure(run: Run):
-    from suslov.validated import (
-        scattering_angle_enclosure,  # python-flint balls only when asked for
-    )
+    from suslov.simulator import exact  # python-flint balls only when asked for
 
-    enclosure = scattering_angle_enclosure(*run.plan.body.entries, dps=20)
+    body = run.plan.body.exact
+    enclosure = exact.enclosure(body, dps=20)
     run.results["scattering_angle_enclosure"] = {
         "ball": enclosure.angle.str(25), "midpoint": float(enclosure.angle.mid()),
         "radius": float(enclosure.angle.rad()),
-        "method": "closed form of every body (Gauss's equation in s = sinh t, certified) in ball arithmetic, rigorous",
-        "entries_paper_frame": [float(x) for x in run.plan.body.entries]}
+        "method": "closed form of every body (Gauss's equation in s = sinh t, certified) in ball arithmetic, rigorous, "
+                  + body.whose(),
+        "entries_paper_frame": body.entries_text(), "body": body.as_json()}
 
 
 def step_galois_monodromy(run: Run):
-    from suslov.validated import monodromy  # python-flint balls only when asked for
+    """The group decided exactly for the body as written (:func:`suslov.simulator.exact.galois_group`), beside
+    the monodromy balls of that body (:func:`suslov.validated.monodromy`); when the monodromy would cost more
+    than its time limit (``MonodromyTooCostly``) the exact decision stands alone and the result says why."""
+    from suslov.simulator import exact  # python-flint balls only when asked for
+    from suslov.validated import MonodromyTooCostly, monodromy
 
-    result = monodromy(*run.plan.body.entries, dps=GALOIS_DIGITS)
-    run.results["galois_group"] = {"verdict": result.verdict, "liouvillian": result.liouvillian,
-                                   "certificates": [{"claim": c, "outcome": o, "detail": d}
-                                                    for c, o, d in result.certificates],
-                                   "largest_radius": result.radius}
+    body = run.plan.body.exact
+    decided = exact.galois_group(body)
+    entries = exact.ball_entries(body, 1200)
+    try:
+        result = monodromy(*entries, dps=GALOIS_DIGITS)
+    except MonodromyTooCostly as error:
+        certificates = [("the monodromy balls", "unknown", f"not computed: {error}")]
+        verdict, liouvillian, radius = "unknown", None, None
+    else:
+        certificates = list(result.certificates)
+        verdict, liouvillian, radius = result.verdict, result.liouvillian, result.radius
+    contradiction = verdict in ("SO(3,C)", "reducible") and verdict != decided.group
+    if not any("decided exactly" in c or "agrees with the exact decision" in c for c, _, _ in certificates):
+        # monodromy() adds the exact decision itself for rational entries; here: ball entries, or no balls at all
+        if contradiction:
+            certificates.append(("the ball verdict agrees with the exact decision (Kimura)", "fail",
+                                 f"balls: {verdict}, exact: {decided.group}"))
+        else:
+            claim = "the differential Galois group, decided exactly (Kimura's theorem on the body's Gauss equation)"
+            certificates.append((claim, "pass", decided.reason))
+    if not contradiction:   # a contradiction is kept as monodromy() keeps it: the balls' verdict, a failed certificate
+        verdict, liouvillian = decided.group, decided.liouvillian
+    run.results["galois_group"] = {"verdict": verdict, "liouvillian": liouvillian,
+                                   "certificates": [{"claim": c, "outcome": o, "detail": d} for c, o, d in certificates],
+                                   "largest_radius": radius, "decided_exactly": decided.group,
+                                   "body": body.as_json()}
 
 
 GALOIS_DIGITS = 20

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 from suslov.loader import gf
 from suslov.simulator.body import make_body
+from suslov.simulator.exact import of_scene_body
 from suslov.simulator.scene import FIGURES, Scene
 from suslov.simulator.sleigh import Sleigh
 
@@ -109,10 +110,11 @@ PROVIDERS = (
              lambda s, b: ("heyoka Taylor tol=1e-12" if s.method == "taylor" else "SciPy DOP853 rtol=1e-12")
              + " on ss from the series start to lam t = 40"),
     Provider("scattering_angle_enclosure", "angle_enclosure", (), "any Suslov body", _suslov,
-             lambda s, b: "the closed form of every body in ball arithmetic (suslov.validated), 1e-20"),
+             lambda s, b: "the closed form of every body in ball arithmetic (suslov.validated), 1e-20, for the "
+                          "body as written (exact; suslov.simulator.exact)"),
     Provider("galois_group", "galois_monodromy", (), "any Suslov body", _suslov,
-             lambda s, b: "the group decided exactly (Kimura on the body's Gauss equation); one body: also the monodromy "
-                            "balls (suslov.validated.monodromy)"),
+             lambda s, b: "the group decided exactly (Kimura on the body's Gauss equation) for the body as written "
+                          "(exact; suslov.simulator.exact); one body: also the monodromy balls (suslov.validated.monodromy)"),
 )
 ORDER = ("omega", "contact_point", "gamma", "orientation", "integral_drift", "scattering_angle",
          "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group")
@@ -129,8 +131,12 @@ class Plan:
         return [s.name for s in self.steps]
 
     def explain(self) -> str:
-        lines = [f"scene {self.scene.name!r} ({self.scene.path})", f"body: {describe(self.body)}",
-                 "effect graph (effect <- step [condition]; needs):"]
+        lines = [f"scene {self.scene.name!r} ({self.scene.path})", f"body: {describe(self.body)}"]
+        exact = getattr(self.body, "exact", None)
+        if exact is not None and {"angle_enclosure", "galois_monodromy"} & set(self.names()):
+            lines.append(f"exact effects for {exact.for_whom()}; paper-frame entries "
+                         f"({', '.join(exact.entries_text())})")
+        lines.append("effect graph (effect <- step [condition]; needs):")
         for effect, chosen, others in self.graph:
             needs = ", ".join(chosen.needs) or "-"
             lines.append(f"  {effect} <- {chosen.step} [{chosen.condition}]; needs: {needs}")
@@ -151,7 +157,8 @@ def build_body(scene: Scene):
     b = scene.body
     if b["kind"] == "sleigh":
         return Sleigh(b["mass"], b["inertia"], b["offset"], scene.speed)
-    return make_body(b.get("inertia"), b.get("p"), b.get("d"), scene.energy)
+    # the numbers as written, exactly (the exact effects' body); ValueError when they are not a body exactly
+    return make_body(b.get("inertia"), b.get("p"), b.get("d"), scene.energy, exact=of_scene_body(b))
 
 
 def choose(effect: str, scene: Scene, body) -> tuple[Provider, list[Provider]]:

@@ -9,7 +9,11 @@ A scene is declarative: it names the effects wanted, never the method.  Schema::
     [body]                                 # exactly one of: inertia | p and d | kind = "sleigh"
     inertia = [[I11, I12, I13], [I12, I22, I23], [I13, I23, I33]]   # constraint axis a = e3
     p = 2.5                                # case I13 = 0 (eq:necc1 corrected), any real p > 0
-    d = 0.7                                # d > 0, d^2 = I11/I22 - 1
+    d = "0.7"                              # d > 0, d^2 = I11/I22 - 1
+                                           # p, d and the inertia entries: integers, decimal or "a/b" strings
+                                           # (exact: "0.7" is 7/10) or floats (their binary value: 0.7 is
+                                           # Fraction(0.7)); the exact effects are computed for these numbers
+                                           # (suslov.simulator.exact), the numerics with their floats
     # Chaplygin sleigh (section 4): kind = "sleigh", mass, inertia (about the centre of mass),
     # offset (blade to centre of mass, > 0)
 
@@ -57,11 +61,13 @@ from __future__ import annotations
 import math
 import tomllib
 from dataclasses import dataclass, field
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
 
 from suslov.loader import gf
+from suslov.simulator.exact import exact_number
 from suslov.simulator.scene_errors import SceneError
 from suslov.simulator.sweep_spec import parse_sweep
 
@@ -127,6 +133,23 @@ def _number(path, name, value, *, positive=False, allow_zero=True):
     return value
 
 
+def _body_number(path, name, value, *, positive=False):
+    """A body's number as a float for the numerics; strings (decimals, "a/b") and Fractions are accepted too,
+    and the exact effects read the number as written (:func:`suslov.simulator.exact.exact_number`)."""
+    if isinstance(value, (str, Fraction)):
+        try:
+            exact, _ = exact_number(name, value)
+            number = float(exact)
+        except ValueError as exc:
+            raise SceneError(path, name, str(exc).split(": ", 1)[-1]) from None
+        except OverflowError:
+            raise SceneError(path, name, f"{value!r} is beyond float64's range") from None
+        if positive and exact <= 0:
+            raise SceneError(path, name, f"{value!r} must be > 0")
+        return number
+    return _number(path, name, value, positive=positive, allow_zero=not positive)
+
+
 def _table(path, data, name, allowed):
     table = data.get(name, {})
     if not isinstance(table, dict):
@@ -155,18 +178,20 @@ def _body(path, table):
         if (not isinstance(rows, list) or len(rows) != 3
                 or not all(isinstance(r, list) and len(r) == 3 for r in rows)):
             raise SceneError(path, "body.inertia", "must be a 3x3 array of numbers")
-        tensor = np.array([[_number(path, f"body.inertia[{i}][{j}]", rows[i][j]) for j in range(3)]
+        tensor = np.array([[_body_number(path, f"body.inertia[{i}][{j}]", rows[i][j]) for j in range(3)]
                            for i in range(3)])
         try:  # the generated module's validation: symmetric, positive definite, a not an eigenvector
             gf.canonical_frame(tensor)
         except ValueError as exc:
             raise SceneError(path, "body.inertia", str(exc)) from None
-        return {"kind": "suslov", "inertia": tensor}
+        # written: the numbers as the user wrote them, for the exact effects (suslov.simulator.exact)
+        return {"kind": "suslov", "inertia": tensor, "written": {"inertia": [list(r) for r in rows]}}
     for key in ("p", "d"):
         if key not in table:
             raise SceneError(path, f"body.{key}", "missing (p and d go together)")
-    return {"kind": "suslov", "p": _number(path, "body.p", table["p"], positive=True, allow_zero=False),
-            "d": _number(path, "body.d", table["d"], positive=True, allow_zero=False)}
+    return {"kind": "suslov", "p": _body_number(path, "body.p", table["p"], positive=True),
+            "d": _body_number(path, "body.d", table["d"], positive=True),
+            "written": {"p": table["p"], "d": table["d"]}}
 
 
 def _motion(path, motion, sweep):
@@ -298,7 +323,9 @@ def parse_scene(data: dict, path=None) -> Scene:
             raise SceneError(path, key, "must be a string")
     if ("body" in data) == ("sweep" in data):
         raise SceneError(path, "body", "give exactly one of [body] (one body) or [sweep] (many)")
-    sweep = parse_sweep(path, data["sweep"]) if "sweep" in data else None
+    wanted = data.get("effects", {}).get("compute", []) if isinstance(data.get("effects"), dict) else []
+    exact = isinstance(wanted, list) and any(e in ("galois_group", "scattering_angle_enclosure") for e in wanted)
+    sweep = parse_sweep(path, data["sweep"], keep_written=exact) if "sweep" in data else None
     body = None if sweep else _body(path, _table(path, data, "body", ("kind", "inertia", "p", "d", "mass", "offset")))
     motion = _table(path, data, "motion", ("time", "samples", "energy", "initial", "gamma0", "speed"))
     window, samples, energy, initial, speed = _motion(path, motion, sweep)

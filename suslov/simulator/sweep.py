@@ -5,7 +5,10 @@ point comes from the planner's provider table (:func:`suslov.simulator.planner.p
 ``scattering_angle`` the closed form of Theorem 5.2 when I13 = 0 and the closed form of every body
 (``general_scattering_angle``) otherwise, never an integration; for ``scattering_angle_integrated``
 (the cross-check) Taylor integration of the ss solution (SciPy on request) at every point; for
-``scattering_angle_enclosure`` a ball of the closed form of every body.  Points are cut into chunks and run by
+``scattering_angle_enclosure`` a ball of the closed form of every body.  The exact effects (``galois_group``,
+``scattering_angle_enclosure``) are for the point's numbers as written (:mod:`suslov.simulator.exact`: a
+decimal string in the scene or a CSV cell exactly, a float its binary value), never for the det-normalised
+float entries of the numerics; their ``_method`` column says which.  Points are cut into chunks and run by
 :mod:`suslov.executor` (local processes or Dask); finished chunks are kept beside the output
 directory (``.NAME.chunks``) until the whole sweep succeeded, so an interrupted sweep resumes.
 
@@ -40,8 +43,10 @@ import numpy as np
 
 import suslov.executor as executor
 from suslov.loader import gf
+from suslov.simulator import exact
 from suslov.simulator.body import make_body
 from suslov.simulator.engine import general_angle, numeric_angle
+from suslov.simulator.exact import from_pd, from_tensor
 from suslov.simulator.planner import point_steps
 from suslov.simulator.sweep_outputs import columns_of, spread_source, write_sweep_outputs
 from suslov.simulator.sweep_spec import tensor_of
@@ -117,11 +122,21 @@ def _options(scene) -> dict:
             "columns": list(scene.sweep.columns)}
 
 
-def point_body(point: dict, kind: str):
-    """The body of one sweep point; ValueError (with the reason) when it cannot be a body."""
+EXACT_EFFECTS = ("galois_group", "scattering_angle_enclosure")
+
+
+def point_body(point: dict, kind: str, with_exact: bool = False, written: dict | None = None):
+    """The body of one sweep point; ValueError (with the reason) when it cannot be a body.
+
+    ``with_exact``: also the body as written (``body.exact``, :mod:`suslov.simulator.exact`), the exact effects'
+    body: the point's numbers as written (``written``: column -> the string the scene or the CSV gave, where
+    one did) or else its float64 values, exactly (their binary values)."""
+    numbers = dict(point, **{k: v for k, v in (written or {}).items() if v is not None})
     if kind == "pd":
-        return make_body(None, point["p"], point["d"], point.get("energy"))
-    return make_body(tensor_of(point), energy=point.get("energy"))
+        body = from_pd(numbers["p"], numbers["d"]) if with_exact else None
+        return make_body(None, point["p"], point["d"], point.get("energy"), exact=body)
+    body = from_tensor(tensor_of(numbers, exact=True)) if with_exact else None
+    return make_body(tensor_of(point), energy=point.get("energy"), exact=body)
 
 
 def classify(point: dict, options: dict) -> tuple:
@@ -176,10 +191,13 @@ def _columns(effect: str, value, error, method) -> dict:
     return {effect: value, f"{effect}_error": error, f"{effect}_method": method}
 
 
-def evaluate_point(point: dict, options: dict) -> dict:
-    """The scalar effects of one point; a point that is not a body gets its reason in ``error``."""
+def evaluate_point(point: dict, options: dict, written: dict | None = None) -> dict:
+    """The scalar effects of one point; a point that is not a body gets its reason in ``error``.
+
+    The exact effects (galois_group, scattering_angle_enclosure) are computed for the point's numbers as
+    written (``written``, else its float64 values, exactly): never for the det-normalised float entries."""
     try:
-        body = point_body(point, options["kind"])
+        body = point_body(point, options["kind"], any(e in EXACT_EFFECTS for e in options["effects"]), written)
     except ValueError as exc:
         return {"error": f"refused: {exc}"}
     steps = point_steps(options["effects"], SimpleNamespace(method=options["method"]), body)
@@ -190,25 +208,35 @@ def evaluate_point(point: dict, options: dict) -> dict:
         if "angle_integrate" in steps:
             row |= _columns("scattering_angle_integrated", *_integrated(body, options["method"]))
         if "galois_monodromy" in steps:
-            from suslov.validated import galois_group   # exact: Kimura's theorem on the body's Gauss equation
-            result = galois_group(*body.entries)
+            result = exact.galois_group(body.exact)   # exact: Kimura's theorem on the body's Gauss equation
             row |= {"galois_group": GALOIS_CODES[result.group], "galois_group_error": 0.0,
-                    "galois_group_method": f"{result.group} (exact: Kimura's theorem, entries as their binary values)"}
+                    "galois_group_method": f"{result.group} (exact: Kimura's theorem, {_whose(body.exact)})"}
         if "angle_enclosure" in steps:
-            from suslov.validated import scattering_angle_enclosure
-            ball = scattering_angle_enclosure(*body.entries, dps=ENCLOSURE_DIGITS).angle
+            ball = exact.enclosure(body.exact, dps=ENCLOSURE_DIGITS).angle
             row |= {"scattering_angle_enclosure": float(ball.mid()),
                     "scattering_angle_enclosure_error": float(ball.rad()),
-                    "scattering_angle_enclosure_method": "closed form of every body in ball arithmetic (rigorous)"}
+                    "scattering_angle_enclosure_method": "closed form of every body in ball arithmetic, "
+                                                         f"{_whose(body.exact)} (rigorous)"}
     except (RuntimeError, ArithmeticError, ValueError) as exc:
         return {"error": f"failed: {type(exc).__name__}: {exc}"}
     return row
 
 
+def _whose(body) -> str:
+    """Which body an exact column is for, short (one CSV cell)."""
+    if body.floats:
+        return "for the point's float64 entries (their binary values, not the decimals they print as)"
+    return "for the point's numbers as written (exact)"
+
+
 def evaluate_chunk(task) -> list:
-    """Executor work: ``task = (options, rows)``, rows as lists of floats in ``options['columns']`` order."""
-    options, rows = task
-    return [evaluate_point(dict(zip(options["columns"], row)), options) for row in rows]
+    """Executor work: ``task = (options, rows)`` or ``(options, rows, written)``, rows as lists of floats in
+    ``options['columns']`` order, ``written`` the strings the cells were written as (``Sweep.written``)."""
+    options, rows = task[0], task[1]
+    written = task[2] if len(task) > 2 else [None] * len(rows)
+    columns = options["columns"]
+    return [evaluate_point(dict(zip(columns, row)), options, None if w is None else dict(zip(columns, w)))
+            for row, w in zip(rows, written)]
 
 
 def _code_version() -> str:
@@ -230,6 +258,7 @@ class ChunkTasks:
 
     def __init__(self, scene, chunk: int):
         self.options, self.values, self.chunk = _options(scene), scene.sweep.values, chunk
+        self.written = scene.sweep.written
 
     def __len__(self) -> int:
         return math.ceil(len(self.values) / self.chunk)
@@ -237,17 +266,27 @@ class ChunkTasks:
     def __getitem__(self, i: int):
         if not 0 <= i < len(self):
             raise IndexError(i)
-        return self.options, self.values[i * self.chunk:(i + 1) * self.chunk].tolist()
+        rows = self.values[i * self.chunk:(i + 1) * self.chunk].tolist()
+        if self.written is None:
+            return self.options, rows
+        return self.options, rows, self.written[i * self.chunk:(i + 1) * self.chunk].tolist()
 
 
 def chunk_tasks(scene, chunk: int) -> tuple[ChunkTasks, list]:
-    """(tasks, keys): the key hashes the chunk's rows (their float64 bytes), the options and the code version."""
+    """(tasks, keys): the key hashes the chunk's rows (their float64 bytes, and the strings they were written as
+    where the sweep keeps them: "0.3" and 0.3 are different bodies), the options and the code version."""
     tasks = ChunkTasks(scene, chunk)
     prefix = json.dumps([tasks.options, _code_version()], sort_keys=True).encode()
     values = np.ascontiguousarray(tasks.values, dtype="<f8")
-    keys = [hashlib.sha256(prefix + values[start:start + chunk].tobytes()).hexdigest()[:32]
-            for start in range(0, len(values), chunk)]
-    return tasks, keys
+    written = tasks.written
+
+    def key(start: int) -> str:
+        data = prefix + values[start:start + chunk].tobytes()
+        if written is not None:
+            data += json.dumps(written[start:start + chunk].tolist()).encode()
+        return hashlib.sha256(data).hexdigest()[:32]
+
+    return tasks, [key(start) for start in range(0, len(values), chunk)]
 
 
 def assemble(scene, rows: list) -> dict:
@@ -325,11 +364,11 @@ def measure_costs(scene, budget: float = CALIBRATION_SECONDS) -> tuple[dict, int
         if time.perf_counter() - start - first > budget:
             break
         begin = time.perf_counter()
-        evaluate_point(sw.point(indices[0]), options)
+        evaluate_point(sw.point(indices[0]), options, sw.written_point(indices[0]))
         first += time.perf_counter() - begin
         begin, count = time.perf_counter(), 0
         for i in indices[1:]:
-            evaluate_point(sw.point(i), options)
+            evaluate_point(sw.point(i), options, sw.written_point(i))
             count += 1
             if time.perf_counter() - start - first > budget:
                 break

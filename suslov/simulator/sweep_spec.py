@@ -18,6 +18,11 @@ Schema (every field optional unless stated; values are a number, a list of numbe
     energy = [0.5, 1.0, 2.0]       # kinetic energies; default: rate lam = 1
     chunk = 256                    # points per chunk (default: about 8 chunks per worker)
 
+A value may also be a decimal or ``"a/b"`` string (``I23 = ["-0.2", "-1/3"]``): the exact effects
+(``galois_group``, ``scattering_angle_enclosure``) read it as written (-1/5, -1/3), as they read a CSV cell
+("-0.2" in the file is -1/5); float values, and every value of a range, are the binary numbers they hold
+(:mod:`suslov.simulator.exact`).  The rest of the sweep computes with float64.
+
 Points are the Cartesian product of the fields in the order p, d or I11, I22, I33, I12, I13, I23,
 then energy (the energies of one body are consecutive rows).  Errors in the scene or the CSV
 (missing column, non-numeric cell, NaN, a negative count, 0 points, more than ``MAX_POINTS``) are
@@ -30,6 +35,7 @@ from __future__ import annotations
 import csv
 import math
 from dataclasses import dataclass
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
@@ -54,12 +60,18 @@ class Sweep:
     energies: int                  # number of energies per body (consecutive rows), 1 without a list
     chunk: int | None
     source: str                    # "grid" or the CSV path
+    written: np.ndarray | None = None   # object array like values: the string a cell was written as, where the
+                                        # exact effects need it (its decimal is not its float's binary value)
 
     def __len__(self) -> int:
         return len(self.values)
 
     def point(self, i: int) -> dict:
         return dict(zip(self.columns, (float(x) for x in self.values[i])))
+
+    def written_point(self, i: int) -> dict | None:
+        """column -> the string the scene or the CSV gave for point ``i`` (None where the float is the number)."""
+        return None if self.written is None else dict(zip(self.columns, self.written[i]))
 
 
 def _error(path, field_name, reason):
@@ -115,15 +127,35 @@ def _range(path, name, table) -> np.ndarray:
     return np.random.default_rng(seed).uniform(a, b, count)
 
 
-def _values(path, name, value) -> np.ndarray:
+def _written(path, name, value):
+    """(float, the string as written or None) of one listed value: a number, or a decimal / "a/b" string."""
+    if not isinstance(value, str):
+        return _finite(path, name, value), None
+    try:
+        exact = Fraction(value.strip())
+        number = float(exact)
+    except (ValueError, ZeroDivisionError):
+        raise _error(path, name, f"{value!r} is not a number (a decimal or \"a/b\" string is)") from None
+    except OverflowError:
+        raise _error(path, name, f"{value!r} is beyond float64's range") from None
+    return number, (value.strip() if Fraction(number) != exact else None)
+
+
+def _values(path, name, value) -> tuple[np.ndarray, list | None]:
+    """(float64 values, the strings they were written as or None) of one field."""
     field_name = f"sweep.{name}"
     if isinstance(value, dict):
-        return _range(path, field_name, value)
-    if isinstance(value, list):
+        return _range(path, field_name, value), None
+    if not isinstance(value, list):
+        value = [value]
+        names = [field_name]
+    else:
         if len(value) > MAX_POINTS:
             raise _error(path, field_name, f"more than {MAX_POINTS} values")
-        return np.array([_finite(path, f"{field_name}[{i}]", v) for i, v in enumerate(value)], dtype=float)
-    return np.array([_finite(path, field_name, value)])
+        names = [f"{field_name}[{i}]" for i in range(len(value))]
+    pairs = [_written(path, n, v) for n, v in zip(names, value)]
+    texts = [t for _, t in pairs]
+    return np.array([x for x, _ in pairs], dtype=float), (texts if any(t is not None for t in texts) else None)
 
 
 def _energy_positive(path, energies):
@@ -132,8 +164,10 @@ def _energy_positive(path, energies):
             raise _error(path, "sweep.energy", f"value {i}: {e!r}: an energy must be > 0")
 
 
-def read_bodies_csv(path: Path, scene_path) -> tuple[tuple, np.ndarray]:
-    """Columns and rows of a bodies file; errors name the file, the row (1 = first data row) and the column."""
+def read_bodies_csv(path: Path, scene_path, keep_written: bool = False) -> tuple[tuple, np.ndarray, np.ndarray | None]:
+    """Columns, rows and (``keep_written``) the cells as written of a bodies file; errors name the file, the row
+    (1 = first data row) and the column.  A cell is kept as written only where its decimal is not its float's
+    binary value ("0.3", not "0.5"); None when no cell is, or when not asked."""
     if not path.is_file():
         raise _error(scene_path, "sweep.bodies", f"{path}: file not found")
     with path.open(newline="", encoding="utf-8") as handle:
@@ -155,13 +189,13 @@ def read_bodies_csv(path: Path, scene_path) -> tuple[tuple, np.ndarray]:
         unknown = sorted(set(header) - set(columns))
         if unknown:
             raise _error(path, "header", f"unknown column {unknown[0]!r}")
-        rows = []
+        rows, written, inexact = [], [], False
         for number, row in enumerate(reader, 1):
             if not row or all(not cell.strip() for cell in row):
                 continue
             if len(row) != len(header):
                 raise _error(path, f"row {number}", f"{len(row)} cells, the header has {len(header)}")
-            values = []
+            values, texts = [], []
             for column, k in zip(columns, index):
                 cell = row[k].strip()
                 try:
@@ -171,16 +205,33 @@ def read_bodies_csv(path: Path, scene_path) -> tuple[tuple, np.ndarray]:
                 if not math.isfinite(x):
                     raise _error(path, f"row {number}, column {column}", f"{cell!r} is not finite")
                 values.append(x)
+                if keep_written:
+                    text = None if column == "energy" or Fraction(cell) == Fraction(x) else cell
+                    inexact = inexact or text is not None
+                    texts.append(text)
             rows.append(values)
+            if keep_written:
+                written.append(texts)
             if len(rows) > MAX_POINTS:
                 raise _error(path, "rows", f"more than {MAX_POINTS} points")
     if not rows:
         raise _error(path, "rows", "no data rows: a sweep needs at least one point")
-    return columns, np.array(rows, dtype=float)
+    return columns, np.array(rows, dtype=float), (_object_array(written) if inexact else None)
 
 
-def parse_sweep(path, table) -> Sweep:
-    """Validate a ``[sweep]`` table and expand its points (see the module docstring)."""
+def _object_array(rows: list) -> np.ndarray:
+    out = np.empty((len(rows), len(rows[0]) if rows else 0), dtype=object)
+    for i, row in enumerate(rows):
+        out[i, :] = row
+    return out
+
+
+def parse_sweep(path, table, keep_written: bool = False) -> Sweep:
+    """Validate a ``[sweep]`` table and expand its points (see the module docstring).
+
+    ``keep_written``: keep the CSV cells as written (``Sweep.written``) where their decimal is not their float's
+    binary value; the scene asks for it when it computes an exact effect (the strings cost memory per point).
+    Strings written in the scene itself are always kept."""
     if not isinstance(table, dict):
         raise _error(path, "sweep", "must be a table ([sweep])")
     unknown = sorted(set(table) - set(ALLOWED))
@@ -199,28 +250,32 @@ def parse_sweep(path, table) -> Sweep:
         if not isinstance(table["bodies"], str):
             raise _error(path, "sweep.bodies", "must be a path (string) relative to the scene file")
         csv_path = Path(path).parent / table["bodies"]
-        columns, values = read_bodies_csv(csv_path, path)
+        columns, values, written = read_bodies_csv(csv_path, path, keep_written)
         if "energy" in columns:
             if "energy" in table:
                 raise _error(path, "sweep.energy", f"{csv_path} has an energy column: give energies in one place")
             _energy_positive(csv_path, values[:, columns.index("energy")])
-            return Sweep(columns, values, "tensor", (), 1, chunk, str(csv_path))
-        energies = _values(path, "energy", table["energy"]) if "energy" in table else None
+            return Sweep(columns, values, "tensor", (), 1, chunk, str(csv_path), written)
+        energies = _values(path, "energy", table["energy"])[0] if "energy" in table else None
         if energies is None:
-            return Sweep(columns, values, "tensor", (), 1, chunk, str(csv_path))
+            return Sweep(columns, values, "tensor", (), 1, chunk, str(csv_path), written)
         _energy_positive(path, energies)
         grid = np.repeat(values, len(energies), axis=0)
         grid = np.column_stack([grid, np.tile(energies, len(values))])
-        return Sweep((*columns, "energy"), grid, "tensor", (), len(energies), chunk, str(csv_path))
+        if written is not None:
+            written = np.column_stack([np.repeat(written, len(energies), axis=0),
+                                       np.full(len(grid), None, dtype=object)])
+        return Sweep((*columns, "energy"), grid, "tensor", (), len(energies), chunk, str(csv_path), written)
     names = PD_FIELDS if has_pd else TENSOR_FIELDS
     required = PD_FIELDS if has_pd else TENSOR_FIELDS[:3]
     for key in required:
         if key not in table:
             raise _error(path, f"sweep.{key}", "missing (" + ("p and d go together" if has_pd else
                          "a tensor sweep needs I11, I22 and I33; I12, I13, I23 default to 0") + ")")
-    axes = [(name, _values(path, name, table.get(name, 0.0))) for name in names]
+    fields = {name: _values(path, name, table.get(name, 0.0)) for name in names}
+    axes = [(name, fields[name][0]) for name in names]
     if "energy" in table:
-        energies = _values(path, "energy", table["energy"])
+        energies = _values(path, "energy", table["energy"])[0]
         _energy_positive(path, energies)
         axes.append(("energy", energies))
     total = math.prod(len(v) for _, v in axes)
@@ -233,12 +288,23 @@ def parse_sweep(path, table) -> Sweep:
     values = np.column_stack([m.ravel() for m in mesh])
     varying = tuple(n for n, v in axes if len(v) > 1 and n != "energy")
     energies = len(axes[-1][1]) if axes[-1][0] == "energy" else 1
-    return Sweep(tuple(n for n, _ in axes), values, "pd" if has_pd else "tensor", varying, energies, chunk, "grid")
+    written = None
+    if any(texts is not None for _, texts in fields.values()):   # the strings, point by point (object array)
+        index = np.meshgrid(*[np.arange(len(v)) for _, v in axes], indexing="ij")
+        written = np.full(values.shape, None, dtype=object)
+        for k, name in enumerate(names):
+            texts = fields[name][1]
+            if texts is not None:
+                written[:, k] = np.array(texts, dtype=object)[index[k].ravel()]
+    return Sweep(tuple(n for n, _ in axes), values, "pd" if has_pd else "tensor", varying, energies, chunk, "grid",
+                 written)
 
 
-def tensor_of(point: dict) -> np.ndarray:
-    """The symmetric 3x3 tensor of a tensor-sweep point."""
+def tensor_of(point: dict, exact: bool = False):
+    """The symmetric 3x3 tensor of a tensor-sweep point: float64, or (``exact``) the point's numbers as they
+    are (nested lists, for :func:`suslov.simulator.exact.from_tensor`)."""
     g = point.get
-    return np.array([[g("I11"), g("I12", 0.0), g("I13", 0.0)],
-                     [g("I12", 0.0), g("I22"), g("I23", 0.0)],
-                     [g("I13", 0.0), g("I23", 0.0), g("I33")]], dtype=float)
+    rows = [[g("I11"), g("I12", 0), g("I13", 0)],
+            [g("I12", 0), g("I22"), g("I23", 0)],
+            [g("I13", 0), g("I23", 0), g("I33")]]
+    return rows if exact else np.array(rows, dtype=float)
