@@ -134,7 +134,9 @@ def r_cover(n: int = 32) -> list:
 def prove_scattering_angle(module) -> Proof:
     with ctx.workprec(PREC):
         worst, boxes = arb(0), 0
-        rho_x = (1 + U) ** 3 - 1          # x = fl(fl(fl(pi) |p|) / (2d)): three roundings, 2d exact
+        # x = fl(fl(fl(pi) |p|) / (2d)): three roundings, 2d exact (p and d beyond 2^1020 are divided by 4 first,
+        # exactly: where p/4 falls below the normal range, x underflows to 0 with or without it)
+        rho_x = (1 + U) ** 3 - 1
         for x in x_boxes():
             fx = FE(x, _mag(x) * rho_x, rho_x, 0)
             for r, upper in r_cover():
@@ -187,7 +189,8 @@ def modelled(module, name: str):
         core = module._omega_general(FLOAT, t, I11, I22, I13, I23, -np.sqrt(I11 * I22))
         return public, np.stack([np.broadcast_to(w, public.shape[1:]) for w in core])
     p, d = MODEL_P[:, None], MODEL_D[None, :]
-    x = np.pi * np.abs(p) / (2.0 * d)
+    quarter = np.where(np.maximum(np.abs(p), d) > 2.0**1020, 0.25, 1.0)
+    x = np.pi * np.abs(p * quarter) / (2.0 * (d * quarter))
     r = np.abs(p - 2.0 * np.round(p / 2.0))
     s = np.sin(0.5 * np.pi * r)
     c = np.where(r >= 0.5, np.sin(0.5 * np.pi * (1.0 - r)), np.cos(0.5 * np.pi * r))

@@ -244,19 +244,40 @@ def lengths_model(U2, a, b, c2):
 
 
 def composition_model(module, I11, I22, I13, I23) -> float:
-    """The run-time composition as analysed, one body (Python floats): scalings, invariants, lengths, h, g, Y."""
-    from suslov.kernel.contexts import FLOAT
+    """The run-time composition as analysed, one body (Python floats): scalings, invariants, lengths, h, g, Y.
 
+    Beyond the proof's domain it follows the run time's contract, as it must for the bit check: h and g capped
+    at ``_HUGE``, float64's NaN and inf where Python would raise (``lam`` = 0 when the scaled I13, I23 underflow;
+    ``Y/lam`` beyond float64 when ``lam`` is subnormal), and where the float composition has no finite value the
+    formula again in mpmath (``finite.repair``), as the public function does (issue 43: the model raised
+    OverflowError there, where the public function returns the angle)."""
+    from suslov.kernel import finite, gauss_angle
+    from suslov.kernel.contexts import FLOAT, MP
+    from suslov.runtime.general_angle import _HUGE, NAMES
+
+    body = (I11, I22, I13, I23)
     size = max(I11, I22, abs(I13), abs(I23))
     I11, I22, I13, I23 = I11 / size, I22 / size, I13 / size, I23 / size
-    lam = max(abs(I13), abs(I23))
-    U2, a, b, c2 = (float(v) for v in invariants_model(I11, I22, I13 / lam, I23 / lam))
-    U, gap, Y = lengths_model(U2, a, b, c2)
-    h, g, Y = 0.5 * math.pi * U / lam, 0.5 * math.pi * gap / lam, Y / lam
-    r = abs(Y - 2.0 * round(Y / 2.0))
-    s = math.sin(0.5 * math.pi * r)
-    c = math.sin(0.5 * math.pi * (1.0 - r)) if r >= 0.5 else math.cos(0.5 * math.pi * r)
-    return float(module._general_angle(FLOAT, np.float64(h), np.float64(g), np.float64(s), np.float64(c)))
+    lam = np.float64(max(abs(I13), abs(I23)))     # NumPy's division: 0/0 is NaN, x/0 inf, as at run time
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        U2, a, b, c2 = (float(v) for v in invariants_model(I11, I22, I13 / lam, I23 / lam))
+        U, gap, Y = lengths_model(U2, a, b, c2)
+        h, g, Y = (float(v) for v in (min(0.5 * math.pi * U / lam, _HUGE), min(0.5 * math.pi * gap / lam, _HUGE),
+                                      Y / lam))
+    if math.isfinite(Y):
+        r = abs(Y - 2.0 * round(Y / 2.0))
+        s = math.sin(0.5 * math.pi * r)
+        c = math.sin(0.5 * math.pi * (1.0 - r)) if r >= 0.5 else math.cos(0.5 * math.pi * r)
+    else:
+        s = c = math.nan          # half_pi_parts of a non-finite Y
+    with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+        angle = float(module._general_angle(FLOAT, np.float64(h), np.float64(g), np.float64(s), np.float64(c)))
+    if math.isfinite(angle):
+        return angle
+    (angle,) = finite.repair("general_scattering_angle", (np.array(angle),), NAMES, tuple(np.array(x) for x in body),
+                             lambda *entries: (module._general_angle(
+                                 MP, *gauss_angle.mp_arguments(*module._gauss_invariants(MP, *entries))),))
+    return float(angle)
 
 
 def seeded_bodies(count: int = 400) -> list:

@@ -23,8 +23,12 @@ __all__ = ["scattering_angle", "scattering_angle_mp", "scattering_angle_ball"]
 def scattering_angle(emitted, p, d) -> np.ndarray:
     p, d = np.broadcast_arrays(real_array("p", p), real_array("d", d, positive=True))
     s, c = phase.half_pi_parts(p)
-    x = np.pi * np.abs(p) / (2.0 * d)
+    # p and d beyond 2^1020 both divided by 4 (exactly), so that fl(pi |p|) and 2d overflow only where x does (at
+    # p = d = 1e308 x was inf/inf = NaN, at p = 5e307, d = 1e308 it was 0); x beyond float64 is inf, silently:
+    # sech x = 0 and tanh x = 1 there, the angle's limit
+    quarter = np.where(np.maximum(np.abs(p), d) > 2.0**1020, 0.25, 1.0)
     with np.errstate(under="ignore", over="ignore"):
+        x = np.pi * np.abs(p * quarter) / (2.0 * (d * quarter))
         return np.asarray(emitted(FLOAT, x, s, c), dtype=float)
 
 

@@ -47,12 +47,15 @@ def general_scattering_angle(invariants, emitted, I11, I22, I13, I23) -> np.ndar
     size = np.maximum(np.maximum(I11, I22), np.maximum(np.abs(I13), np.abs(I23)))
     I11, I22, I13, I23 = I11 / size, I22 / size, I13 / size, I23 / size
     lam = np.maximum(np.abs(I13), np.abs(I23))
-    with np.errstate(under="ignore"):
+    # lam = 0 (I13/size and I23/size both below float64's range: 0/0) and Y/lam beyond float64 (lam subnormal) give
+    # NaN here, silently: those bodies are evaluated again in mpmath below
+    with np.errstate(under="ignore", invalid="ignore"):
         U2, a, b, c2 = invariants(FLOAT, I11, I22, I13 / lam, I23 / lam)
     U, gap, Y = gauss_angle.float_lengths(U2, a, b, c2)
     with np.errstate(over="ignore"):   # lengths scale like 1/lam
         h, g, Y = np.minimum(0.5 * np.pi * U / lam, _HUGE), np.minimum(0.5 * np.pi * gap / lam, _HUGE), Y / lam
-    s, c = phase.half_pi_parts(Y)
+    with np.errstate(invalid="ignore"):
+        s, c = phase.half_pi_parts(Y)
     with np.errstate(under="ignore", over="ignore", invalid="ignore"):
         angle = np.asarray(emitted(FLOAT, h, g, s, c), dtype=float)
     # entries spanning more than float64's range (I11/size underflows to 0): those again in mpmath
