@@ -4,11 +4,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 PMAX_LIMIT = 401
+BALL_CHECKS = ("default", "full")
 
 
 @dataclass(frozen=True)
 class BuildOptions:
-    """``pmax``: largest p for the per-p tables (both parities up to it).
+    """``pmax``: largest p for the per-p tables (both parities up to it); ``ball_checks``: how many
+    seeded bodies corroborate the general angle's analytic step (part of what the build yields).
 
     ``jobs`` (local worker processes for the per-p certificates; None: all cores, 1: none) and
     ``scheduler`` (a dask.distributed address) choose how the work runs, and ``cache`` whether
@@ -17,6 +19,9 @@ class BuildOptions:
     """
 
     pmax: int = 15
+    # the analytic step of the general angle's connection, corroborated on seeded bodies
+    # (derivations.sections.general_angle.BALL_TIERS): "default" on a few bodies, "full" on all twenty
+    ball_checks: str = "default"
     jobs: int | None = field(default=None, compare=False)
     scheduler: str | None = field(default=None, compare=False)
     cache: bool = field(default=False, compare=False)   # per-p results from/to derivations.core.cache
@@ -26,6 +31,8 @@ class BuildOptions:
             raise ValueError(f"pmax={self.pmax!r}: must be an integer")
         if not 1 <= self.pmax <= PMAX_LIMIT:
             raise ValueError(f"pmax={self.pmax}: must be between 1 and {PMAX_LIMIT}")
+        if self.ball_checks not in BALL_CHECKS:
+            raise ValueError(f"ball_checks={self.ball_checks!r}: must be one of {', '.join(BALL_CHECKS)}")
         if self.jobs is not None and (isinstance(self.jobs, bool) or not isinstance(self.jobs, int) or self.jobs < 1):
             raise ValueError(f"jobs={self.jobs!r}: must be a positive integer")
 

@@ -20,7 +20,7 @@ from pathlib import Path
 
 from derivations.core.cache import TreeCache, build_key
 from derivations.core.certificates import CertificationFailure
-from derivations.core.options import PMAX_LIMIT, BuildOptions
+from derivations.core.options import BALL_CHECKS, PMAX_LIMIT, BuildOptions
 from derivations.output.estimate import Calibration, estimate_seconds, predicted_seconds
 from derivations.output.pdf import PdfError, compile_pdfs, document_report
 from derivations.output.pipeline import (
@@ -101,6 +101,11 @@ def parser() -> argparse.ArgumentParser:
                     help="compare OLD (a git revision or a generated directory) with generated/ (or --out DIR), "
                          "without rebuilding: list the formulas, tables, certificates and errata that changed and "
                          "write a latexdiff PDF of the formulas document into build/diff/ (needs latexdiff)")
+    ap.add_argument("--ball-checks", choices=BALL_CHECKS, default=BuildOptions().ball_checks,
+                    help="how many seeded bodies corroborate the analytic step of the general scattering angle "
+                         "(complex-path monodromy and ss enclosures in balls): 'default' the first 4 traces, 8 "
+                         "angles and 1 deep angle (seconds), 'full' all 20 bodies at 100 digits (about 25 s more "
+                         "on one core); the certificates say which")
     ap.add_argument("--jobs", type=_jobs, default=None, metavar="N",
                     help="worker processes for the per-p certificates (default: all cores; 1: none); the outputs "
                          "are identical whatever N")
@@ -228,8 +233,8 @@ def main(argv: list[str] | None = None) -> int:
         args.jobs, capped = worker_limit(args.jobs, "--jobs")
         if capped:
             print(f"build_formulas.py: note: {capped}", file=sys.stderr)
-    options = BuildOptions(pmax=args.pmax, jobs=args.jobs, scheduler=scheduler_address(args.scheduler),
-                           cache=use_cache)
+    options = BuildOptions(pmax=args.pmax, ball_checks=args.ball_checks, jobs=args.jobs,
+                           scheduler=scheduler_address(args.scheduler), cache=use_cache)
     if options.scheduler:
         try:
             check_reachable(options.scheduler)

@@ -152,7 +152,8 @@ def derive(options: BuildOptions, only: list[str] | None = None, progress: Progr
     # numeric certificates that need no other result start at once in the worker processes; the
     # derivations collect them where they record them (CertificateLog.prefetch)
     for name in names:
-        for label, values, work in getattr(DERIVATIONS[name], "PREFETCH", ()):
+        prefetch = getattr(DERIVATIONS[name], "PREFETCH", ())
+        for label, values, work in (prefetch(options) if callable(prefetch) else prefetch):
             log.prefetch(label, values, work)
     try:
         for index, name in enumerate(names, 1):
@@ -229,6 +230,7 @@ def certificate_document(build: Build) -> dict:
     ctx = context(build)
     return {
         "pmax": ctx["pmax"],
+        "ball_checks": build.options.ball_checks,
         "derivations": ctx["names"],
         "certificates": [c.deterministic_record() for c in build.log.certificates],
         "errata": [{**vars(e), "note": text(say(e.note))} for e in ctx["errata"]],

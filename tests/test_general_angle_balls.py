@@ -1,0 +1,38 @@
+"""The full ball checks of the general angle's analytic step, without a build (issue 43).
+
+The default build corroborates the connection step of the closed-form scattering angle of every body
+(``derivations/sections/general_angle.py``, step 5) on the first few of the twenty seeded bodies
+(``BALL_TIERS["default"]``), so that a cold build stays in seconds; ``build_formulas.py --ball-checks full``
+runs all twenty at 100 digits.  This file runs that full set here, one body and check per test (so the
+workers of ``pytest -n`` share them), against two independent validated routes:
+
+* the complex-path monodromy in x = e^t (``suslov.kernel.monodromy``), whose traces the closed form predicts;
+* the ss enclosure (``suslov.kernel.enclosure``: validated integration along the real t-axis).
+
+A pass proves the stated distance; the tolerance is the build's, ``10^(10 - digits)``.
+"""
+import pytest
+
+from derivations.sections import general_angle
+
+FULL = general_angle.BALL_TIERS["full"]
+JOBS = general_angle.ball_jobs(FULL)
+
+
+def test_default_tier_is_a_prefix_of_the_full_set():
+    default = general_angle.ball_jobs(general_angle.BALL_TIERS["default"])
+    bodies = general_angle.seeded_bodies()
+    assert len(bodies) == general_angle.SEEDED == 20 and len(set(bodies)) == 20
+    assert all(job[0] in bodies for job in default)
+    assert len(JOBS) == FULL.trace_bodies + FULL.angle_bodies + FULL.deep_bodies == 42
+    assert {(kind, digits) for _, kind, digits, _ in JOBS} == {("trace", 100), ("angle", 20), ("angle", 100)}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("job", JOBS, ids=[f"{kind}-{digits}-{'_'.join(body)}" for body, kind, digits, _ in JOBS])
+def test_full_ball_check(job):
+    body, kind, digits, _ = job
+    row = general_angle._run_check(job)
+    assert row["body"] == body
+    distance = row["relative_float"] if kind == "trace" else row["difference_float"]
+    assert 0 <= distance <= 10.0 ** (10 - digits), (kind, digits, body, row)
