@@ -11,7 +11,6 @@ import json
 import shutil
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -95,11 +94,10 @@ def test_enclosure_digits_are_validated(value):
 
 def test_costly_enclosure_stops_at_max_seconds_and_reports_progress():
     reports = []
-    start = time.perf_counter()
     with pytest.raises(EnclosureTooCostly, match="max_seconds=2"):
         scattering_angle_enclosure(2, 1, 0, "-1e-4", dps=10, max_seconds=2,
                                    progress=lambda *a: reports.append(a), method="integration")
-    assert time.perf_counter() - start < 10 and reports
+    assert reports   # progress was reported before the limit stopped it
 
 
 def test_per_d_caches_are_bounded():
