@@ -2,12 +2,12 @@
 
 Side by side, in one run, on the committed generated module:
 
-* the proofs (``derivations.output.float_proofs``: the emitted ``_omega`` / ``_omega_general`` / ``_scattering_angle`` on error
+* the proofs (``derivations.proofs.float_proofs``: the emitted ``_omega`` / ``_omega_general`` / ``_scattering_angle`` on error
   balls over their boxes, plus the bit-for-bit check of the public function against the analysed composition;
-  ``derivations.output.integral_proof``: ``first_integral``'s Horner sequence for every p in INTEGRAL_PS, plus its
+  ``derivations.proofs.integral_proof``: ``first_integral``'s Horner sequence for every p in INTEGRAL_PS, plus its
   bit-for-bit check);
-* ``derivations.output.basis_proof`` (``gamma_basis``, both phase branches, every p in BASIS_PS, with its bit-for-bit
-  and assembly checks) and ``derivations.output.general_angle_proof`` (``general_scattering_angle``'s mixed bound);
+* ``derivations.proofs.basis_proof`` (``gamma_basis``, both phase branches, every p in BASIS_PS, with its bit-for-bit
+  and assembly checks) and ``derivations.proofs.general_angle_proof`` (``general_scattering_angle``'s mixed bound);
 * the sampled round-trip checks they replaced (float64 against the mpmath twin at 40 digits at the old
   seeded points; the loops of the old ``float_paths.check_omega`` / ``check_omega_general`` /
   ``check_scattering_angle``).
@@ -37,7 +37,13 @@ from machine_info import cpu_name  # noqa: E402
 from timing import median_seconds  # noqa: E402
 
 from derivations.core.certificates import CertificateLog  # noqa: E402
-from derivations.output import basis_proof, float_paths, float_proofs, general_angle_proof, integral_proof  # noqa: E402
+from derivations.output import float_paths  # noqa: E402
+from derivations.proofs import (  # noqa: E402
+    basis_proof,
+    float_proofs,
+    general_angle_proof,
+    integral_proof,
+)
 from generated import suslov_formulas as sf  # noqa: E402
 
 COLD_BUILD_SECONDS = 40.1          # bench/results/build.md, pmax 15, all cores

@@ -276,7 +276,7 @@ def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, g
     the ratio of modulus <= 1 (``suslov.kernel.horner.combination``), the powers of two of s^p
     and of the coefficients' scale applied once at the end (no intermediate over- or
     underflow).  Error bound (proven from the evaluation's operations, rounding model with
-    libm's pow within 4 ulp, BLAS sums in any order; ``derivations.output.integral_proof``):
+    libm's pow within 4 ulp, BLAS sums in any order; ``derivations.proofs.integral_proof``):
     absolute ``2e-15 (p+1) s^p sum_i |gamma_i| sum_k |a_ik| + 5e-324`` (proven: (3p+14) u in
     place of 2e-15 (p+1); the last term: a result in float64's subnormal range) wherever
     ``|gamma_i| <= 1`` and ``sum_i |gamma_i| sum_k |a_ik| >= 2^-600 max |a_ik|`` (beyond, an

@@ -1,4 +1,4 @@
-"""The proven float64 bound of gamma_basis (issue 34; derivations/output/basis_proof.py).
+"""The proven float64 bound of gamma_basis (issue 34; derivations/proofs/basis_proof.py).
 
 * Held-out hard points (large phases on both branches, d from 1e-3 to 1e3, long and tiny times): the float
   function is within the proven bound of gamma_basis_mp at 40 digits, itself checked against the exact
@@ -15,7 +15,7 @@ import pytest
 
 import suslov as sf
 from conftest import mutated_function
-from derivations.output import basis_proof
+from derivations.proofs import basis_proof
 from suslov.kernel import phase, trig_series
 from suslov.kernel.phase import PHASE_LIMIT
 from suslov.runtime import basis as runtime_basis

@@ -13,8 +13,8 @@ import pytest
 from flint import arb, ctx
 
 from derivations.core.certificates import CertificateLog, CertificationFailure, Outcome
-from derivations.output import float_bounds as fb
-from derivations.output import float_proofs as fp
+from derivations.proofs import float_bounds as fb
+from derivations.proofs import float_proofs as fp
 from generated import suslov_formulas as sf
 
 U = 2.0**-53
@@ -142,9 +142,9 @@ def test_omega_general_bound_holds_at_hard_points(proofs):
                         assert abs(got - want) <= bound * B + 1e-300, (I11, I22, I13, I23, branch, t)
 
 
-# ---------------------------------------------------------------- first_integral (derivations.output.integral_proof)
+# ---------------------------------------------------------------- first_integral (derivations.proofs.integral_proof)
 
-from derivations.output import integral_proof as ip  # noqa: E402
+from derivations.proofs import integral_proof as ip  # noqa: E402
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""The proven mixed bound of general_scattering_angle (issue 34; derivations/output/general_angle_proof.py).
+"""The proven mixed bound of general_scattering_angle (issue 34; derivations/proofs/general_angle_proof.py).
 
 Each stage's claim is checked on held-out bodies against mpmath at 50 digits, an independent route:
 
@@ -18,8 +18,8 @@ from flint import ctx
 
 import suslov as sf
 from conftest import mutated_function
-from derivations.output import general_angle_proof as proof
-from derivations.output.float_bounds import U
+from derivations.proofs import general_angle_proof as proof
+from derivations.proofs.float_bounds import U
 from suslov.kernel import gauss_angle, phase
 from suslov.kernel.contexts import FLOAT, MP
 
@@ -98,7 +98,7 @@ def test_the_relative_rule_of_expm1_holds_at_sampled_points():
     """float_bounds.expm1's relative rule: |expm1(x (1 + t)) - expm1(x)| <= r e^(max(x,0)(1+r) + |x| r) |expm1(x)|."""
     from flint import arb
 
-    from derivations.output.float_bounds import FE, LIBM_REL, expm1
+    from derivations.proofs.float_bounds import FE, LIBM_REL, expm1
 
     rng = np.random.default_rng(5)
     with ctx.workprec(128):

@@ -50,12 +50,12 @@ import pytest
 from flint import arb, ctx, fmpq
 
 from derivations.core.certificates import CertificateLog, CertificationFailure, Outcome
-from derivations.output import (
+from derivations.output import roundtrip
+from derivations.proofs import (
     basis_proof,
     float_proofs,
     general_angle_proof,
     integral_proof,
-    roundtrip,
 )
 from derivations.sections import first_integrals, galois, meromorphic, residue
 from suslov.kernel import phase, trig_series

@@ -51,7 +51,8 @@ RUNTIME_MUTATIONS = [
     ("meromorphy", "bodies.py", "round(p) % 2 == 1", "round(p) % 2 == 0"),
     ("omega", "angular.py", 'finite.repair("omega", (full(w1, shape), full(w2, shape))',
      'finite.repair("omega", (full(w1, shape), full(-w2, shape))'),
-    ("scattering_angle", "angle.py", "x = np.pi * np.abs(p) / (2.0 * d)", "x = np.pi * np.abs(p) / (2.0 * d) * (1 + 1e-12)"),
+    ("scattering_angle", "angle.py", "x = np.pi * np.abs(p * quarter) / (2.0 * (d * quarter))",
+     "x = np.pi * np.abs(p * quarter) / (2.0 * (d * quarter)) * (1 + 1e-12)"),
     ("first_integral", "integrals.py", "value[mask] = horner.combination(coefficients, w1[mask], w2[mask], g[:, mask]) * "
      "mantissa[mask] ** p", "value[mask] = horner.combination(coefficients, w2[mask], w1[mask], g[:, mask]) * "
      "mantissa[mask] ** p"),

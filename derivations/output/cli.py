@@ -18,6 +18,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+import suslov.manifest as manifest
 from derivations.core.cache import TreeCache, build_key
 from derivations.core.certificates import CertificationFailure
 from derivations.core.options import BALL_CHECKS, PMAX_LIMIT, BuildOptions
@@ -36,8 +37,12 @@ from derivations.output.pipeline import (
     write_atomically,
 )
 from derivations.registry import DERIVATIONS
-import suslov.manifest as manifest
-from suslov.executor import SchedulerError, check_reachable, scheduler_address, worker_limit
+from suslov.executor import (
+    SchedulerError,
+    check_reachable,
+    scheduler_address,
+    worker_limit,
+)
 from suslov.interrupts import listen_for_interrupts
 from suslov.outdir import OutputRefused
 

@@ -2,8 +2,8 @@
 
 Part 3 of the round trip (:mod:`derivations.output.roundtrip`).  For each float64 function the
 module's docstring states an error bound.  It is proven for ``omega``, ``omega_general`` and ``scattering_angle``
-(:mod:`derivations.output.float_proofs`), ``first_integral`` (:mod:`derivations.output.integral_proof`) and
-``gamma_basis`` (:mod:`derivations.output.basis_proof`, both phase branches).  What is left here is
+(:mod:`derivations.proofs.float_proofs`), ``first_integral`` (:mod:`derivations.proofs.integral_proof`) and
+``gamma_basis`` (:mod:`derivations.proofs.basis_proof`, both phase branches).  What is left here is
 *evidence*, recorded with method ``numeric evidence (not a certificate)``: the function evaluated at seeded
 points, including hard cases, against the mpmath twin at 40 digits.  A spot check cannot prove a bound.  The
 seeds are fixed, so the certificate log is deterministic.
@@ -16,7 +16,7 @@ Also checked: ``special_case_parameters`` chains into ``omega`` (the body's own 
 frame, equals ``omega(t, p, d)`` with p > 0), and ``meromorphy`` agrees with ``kovalevskaya_exponents``.
 
 Why the rest stays evidence (issue 34): ``general_scattering_angle`` has a proven *mixed* bound
-(:mod:`derivations.output.general_angle_proof`: the exact angle at arguments within 200 u of a body within 2u of the
+(:mod:`derivations.proofs.general_angle_proof`: the exact angle at arguments within 200 u of a body within 2u of the
 given one, plus 400 u); its forward error, which grows with |Y| through the phase pi Y/2 (the problem's own
 condition), is what the sampled check below measures; the chain of ``special_case_parameters`` into ``omega``
 compares, to 1e-11, float results through LAPACK's eigenvectors (the frame, then (p, d)), for which no error bound
@@ -59,10 +59,10 @@ def _ratio(error, bound) -> float:
 
 
 def check_gamma_basis(log: CertificateLog, module, p: int, core=None) -> list:
-    """gamma_basis at this p: the proven bound for each phase branch (:mod:`derivations.output.basis_proof`; the
+    """gamma_basis at this p: the proven bound for each phase branch (:mod:`derivations.proofs.basis_proof`; the
     parity of the certified numerators needs ``core``, without it the proof fails), then gamma_basis_mp against
     the numerators evaluated exactly."""
-    from derivations.output import basis_proof
+    from derivations.proofs import basis_proof
 
     certs = basis_proof.certificates(log, module, p, core)
     if core is not None:
@@ -281,9 +281,9 @@ def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list
     """Every float-path check; one per function, and one per p for the per-p functions, except the p
     in ``skip`` (bases certified in workers: :func:`derivations.output.roundtrip.per_p_checks` runs these
     same checks for them in workers)."""
-    from derivations.output.float_proofs import certificate as proven
-    from derivations.output.general_angle_proof import certificates as proven_general_angle
-    from derivations.output.integral_proof import certificate as proven_integral
+    from derivations.proofs.float_proofs import certificate as proven
+    from derivations.proofs.general_angle_proof import certificates as proven_general_angle
+    from derivations.proofs.integral_proof import certificate as proven_integral
     from derivations.output.kovalevskaya_balls import (
         check_kovalevskaya_exponents,
         check_meromorphy,

@@ -209,12 +209,13 @@ def basis_core_by_digest(module, p: int, digest: str) -> tuple:
 def per_p_checks(task) -> list:
     """Per-p work (run in a worker) for a p whose basis was certified in a worker: ``task = (directory,
     p, digest)``.  The core by fingerprint (:func:`basis_core_by_digest`), then the float-path checks
-    of ``first_integral`` (proven: :mod:`derivations.output.integral_proof`) and ``gamma_basis``
+    of ``first_integral`` (proven: :mod:`derivations.proofs.integral_proof`) and ``gamma_basis``
     (:mod:`derivations.output.float_paths`).  The module is
     imported from the directory once per process, so the emitted code is what is checked, and the
     directory must be visible to the worker (local processes; a Dask cluster on the same file
     system).  Returns the certificates, keys left to the main log."""
-    from derivations.output import float_paths, integral_proof
+    from derivations.output import float_paths
+    from derivations.proofs import integral_proof
 
     directory, p, digest = task
     module = load_module_once(directory)

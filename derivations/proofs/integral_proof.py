@@ -14,7 +14,7 @@
 * times ``m^p`` (``s = m 2^e``, m in [1/2, 1), ``np.frexp`` exact; ``m ** p`` by libm's pow, within 4 ulp,
   ``>= 2^-p`` normal), then ``ldexp(., p e + E)``: exact unless the result is subnormal (then within 2^-1075).
 
-The walk below runs these operations on :class:`derivations.output.float_bounds.FE` values and reads the
+The walk below runs these operations on :class:`derivations.proofs.float_bounds.FE` values and reads the
 *magnitude form* ``|computed - exact| <= w M + aw``: ``M = m^p sum_i |g_i| sum_k |a~_ik| |r|^k`` is the sum of
 the moduli of the expanded terms, and ``w`` (Higham's bound for sums and products, no cancellation penalty)
 does not depend on the values: one box (coefficients and g in [-1, 1], r in [-1, 1]) proves it for every d,
@@ -29,8 +29,8 @@ import math
 import numpy as np
 from flint import arb, ctx
 
-from derivations.output.float_bounds import ETA, FE, LIBM_REL, U, BoundFailure
-from derivations.output.float_proofs import PREC, Proof, _in_u, box
+from derivations.proofs.float_bounds import ETA, FE, LIBM_REL, U, BoundFailure
+from derivations.proofs.float_proofs import PREC, Proof, _in_u, box
 
 DOMAIN_LOG2 = 600                 # the stated domain: sum_j |g_j| sum_k |a_jk| >= 2^-600 max |a_jk|
 STATED_PER_DEGREE = 2e-15         # first_integral's docstring: 2e-15 (p + 1) s^p sum |g| sum |a| + 5e-324
@@ -135,7 +135,7 @@ def model_points(p: int):
 def certificate(log, module, p: int):
     """Prove the bound for p, check that the public function gives the analysed sequence's bits, record it."""
     from derivations.core.certificates import Certificate, Outcome, stopwatch
-    from derivations.output.float_proofs import METHOD, method
+    from derivations.proofs.float_proofs import METHOD, method
 
     with stopwatch() as elapsed:
         try:

@@ -19,7 +19,7 @@ The proof, with every constant enclosed in python-flint balls (higher-order term
   th -> -th, so |f| <= 1 on the whole circle; Parseval gives sum alpha_k^2 + beta_k^2 <= 2 and
   ``sum |alpha_k| + |beta_k| <= sqrt(4p + 2)``.
 * **Powers.**  tanh and sech carry the absolute errors of the walk of ``FLOAT.tanh_sech``
-  (:func:`derivations.output.float_bounds.ErrorContext.tanh_sech`, all t by boxes); a complex product is within
+  (:func:`derivations.proofs.float_bounds.ErrorContext.tanh_sech`, all t by boxes); a complex product is within
   ``sqrt(2) gamma_2 |x| |y|`` of the exact one, with or without FMA (Higham 2002, Lemma 3.5), so
   ``E_k <= (1 + E_(k-1)) E_1 + E_(k-1) + sqrt(2) gamma_2 (1 + E_(k-1)) (1 + E_1)``.
 * **Sums.**  A dot product of n terms in any order, with or without FMA, is within ``gamma_n sum |x_i y_i|``
@@ -50,7 +50,7 @@ import numpy as np
 from flint import arb, ctx
 
 from derivations.core.certificates import Certificate, CertificateLog, Outcome, stopwatch
-from derivations.output.float_bounds import (
+from derivations.proofs.float_bounds import (
     ETA,
     FE,
     LIBM_REL,
@@ -62,7 +62,7 @@ from derivations.output.float_bounds import (
     gamma,
     largest,
 )
-from derivations.output.float_proofs import PREC, box, t_boxes
+from derivations.proofs.float_proofs import PREC, box, t_boxes
 
 D_RANGE = (1e-3, 1e3)
 SERIES_RADIUS = arb(1e-17)            # series_float: ball radius <= mpf(1e-17), the float 1e-17 (checked at run time)

@@ -1,7 +1,7 @@
 """Proofs of the float64 error bounds the generated module states (issue 34), one per emitted function.
 
 Each proof runs the *emitted* function of the module under test (``module._omega``,
-``module._scattering_angle``) with :class:`derivations.output.float_bounds.ErrorContext` over a
+``module._scattering_angle``) with :class:`derivations.proofs.float_bounds.ErrorContext` over a
 cover of its documented domain by boxes, together with the run-time code around it that computes
 its inputs (``suslov.runtime.angle``: ``x = pi |p|/(2d)``, ``phase.half_pi_parts``), and takes the
 worst box.  The bound is stated in units of u = 2^-53 and rounded up; the certificate passes when
@@ -26,7 +26,7 @@ from flint import arb, ctx
 
 from derivations.core.certificates import Certificate, CertificateLog, Outcome, stopwatch
 
-from derivations.output.float_bounds import (
+from derivations.proofs.float_bounds import (
     FE,
     _mag,
     METHOD,

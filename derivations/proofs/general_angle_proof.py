@@ -39,9 +39,9 @@ import numpy as np
 from flint import arb, ctx
 
 from derivations.core.certificates import Certificate, CertificateLog, Outcome, stopwatch
-from derivations.output.float_bounds import FE, METHOD, U, BoundFailure, ErrorContext, _fingerprint, gamma, hypot, largest
-from derivations.output.float_bounds import sqrt as fe_sqrt
-from derivations.output.float_proofs import PREC, box, half_pi_parts
+from derivations.proofs.float_bounds import FE, METHOD, U, BoundFailure, ErrorContext, _fingerprint, gamma, hypot, largest
+from derivations.proofs.float_bounds import sqrt as fe_sqrt
+from derivations.proofs.float_proofs import PREC, box, half_pi_parts
 
 ENTRY_FLOOR = 2.0**-20           # scaled I11, I22 >= 2^-20
 H_RANGE = (2.0**-42, 2.0**46)    # h >= (pi/2) U, U >= I11 I22/D >= 2^-41; above 2^46 see the module docstring
