@@ -93,7 +93,7 @@ def _cos_sin_reduced(angle: np.ndarray):
 def reduce_scalar(q: float, rd: float, t: np.ndarray) -> np.ndarray:
     """The phase (q + rd) t reduced to about [-pi, pi] for scalar p, d (q split once, in-place array operations:
     fewer passes): h + low = q t exactly (Dekker), low += rd t, k = rint(h/C1), then ((h - k C1) - k C2) +
-    (low - k C3).  The operation sequence analysed by ``derivations.output.basis_proof``."""
+    (low - k C3).  The operation sequence analysed by ``derivations.proofs.basis_proof``."""
     tq = _SPLIT * q
     q1 = tq - (tq - q)
     q2 = q - q1

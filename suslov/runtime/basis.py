@@ -11,7 +11,7 @@ certified for every p in ``BASIS_PS``) and ``sigma`` its ``_BASIS_SIGMA``.  Meth
 2. *Float path.*  Midpoints within 1e-17, evaluated by ``suslov.kernel.trig_series``; the phase
    (p/d) t reduced in double-double arithmetic (``suslov.kernel.phase``) below ``PHASE_LIMIT`` and
    enclosed in python-flint balls beyond (:func:`careful_phase`).  The error bound the docstring
-   states is proven over both branches by ``derivations.output.basis_proof``.
+   states is proven over both branches by ``derivations.proofs.basis_proof``.
 3. *mp twin.*  Midpoints within 10^-(dps+10), summed in mpmath at dps + 10 digits; the phase (p/d) t
    with k more digits when it is about 10^k (:func:`phase_digits`; t and d are read with them too).
 """
