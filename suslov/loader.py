@@ -16,6 +16,11 @@ with the per-p objects up to its ``PMAX``.  This module finds the one in use and
 * :data:`gf` -- a stand-in that forwards attribute access to the active module at call time, so the
   simulator modules follow :func:`use_formulas` without re-importing.
 
+A module loaded here answers ``load_certificates()`` from the bytes of ``certificates.json`` read once
+when it was loaded and checked then against the tree's manifest (:func:`_bind_certificates`); the
+emitted function would read the file again at each call, after the verified load, and return an edit
+made in between unchecked (issue 44).
+
 Building needs the ``[build]`` extra (SymPy, symengine, Jinja2); without it :func:`load_formulas` says
 which extra to install.  The build runs in a child process that ends with its caller: Ctrl-C stops both,
 and a caller killed outright takes the build with it (``PR_SET_PDEATHSIG`` on Linux).
@@ -72,7 +77,52 @@ def _load_directory(directory: Path) -> ModuleType:
     # a distinct module name per directory: two ranges can be loaded side by side; the manifest is
     # checked and exactly the checked bytes are executed (suslov.manifest)
     module = manifest.load_module(directory, f"suslov_formulas_{abs(hash(key)):x}")
+    _bind_certificates(module, directory)
     _loaded[key] = module
+    return module
+
+
+CERTIFICATES = "certificates.json"
+
+
+def _bind_certificates(module: ModuleType, directory: Path) -> ModuleType:
+    """Replace ``module.load_certificates`` by one that parses the bytes of ``certificates.json`` checked here.
+
+    The file is read once; its SHA-256 must be the one the tree's manifest records (a file changed since
+    the module's verified load is refused, :class:`suslov.manifest.ManifestError`); ``load_certificates()``
+    then parses exactly those bytes at every call, whatever happens to the file afterwards.  The one
+    exception is the build's own stale ``generated/`` (``SUSLOV_REBUILDING``, :mod:`suslov.manifest`): that tree
+    is loaded unverified and keeps its emitted function.
+    """
+    if getattr(getattr(module, "load_certificates", None), "verified_bytes", None) is not None:
+        return module   # bound already (a module taken from sys.modules)
+    directory = Path(os.path.realpath(directory))
+    if os.environ.get(manifest.REBUILD_ENV) == str(directory):
+        return module
+    expected = manifest.read(directory)[CERTIFICATES]
+    path = directory / CERTIFICATES
+    try:
+        with open(path, "rb") as handle:   # the one read: these bytes are checked and parsed
+            data = handle.read()
+    except OSError as error:
+        raise manifest.ManifestError(f"{path}: cannot be read ({error.strerror or error}); refusing the tree") from None
+    found = manifest.digest(data)
+    if found != expected:
+        raise manifest.ManifestError(f"{path}: SHA-256 {found} where {manifest.MANIFEST} records {expected}: the "
+                                     "file was changed after the build (or during this load); refusing the tree")
+    emitted = module.load_certificates
+
+    def load_certificates() -> dict:
+        return json.loads(data.decode("utf-8"))
+
+    load_certificates.__doc__ = (emitted.__doc__ or "").rstrip() + (
+        f"\n\n    Parsed from the bytes of ``certificates.json`` checked against {manifest.MANIFEST} when the module "
+        "was loaded (SHA-256 " + found + ").\n")
+    load_certificates.__module__ = module.__name__
+    load_certificates.__qualname__ = load_certificates.__name__ = "load_certificates"
+    load_certificates.verified_bytes = data
+    load_certificates.sha256 = found
+    module.load_certificates = load_certificates
     return module
 
 
@@ -80,11 +130,12 @@ def _default() -> ModuleType:
     if os.environ.get(FORMULAS_ENV):
         return _load_directory(Path(os.environ[FORMULAS_ENV]))
     try:
-        return manifest.import_verified("generated.suslov_formulas")
+        module = manifest.import_verified("generated.suslov_formulas")
     except ModuleNotFoundError as error:
         if error.name not in ("generated", "generated.suslov_formulas"):
             raise
-    return manifest.import_verified("suslov.formulas.suslov_formulas")
+        module = manifest.import_verified("suslov.formulas.suslov_formulas")
+    return _bind_certificates(module, Path(module.__file__).parent)
 
 
 def active_formulas() -> ModuleType:

@@ -28,9 +28,8 @@ from suslov.kernel.enclosure import (
     ss_angle_enclosure,
     to_arb,
 )
-from suslov.kernel.contexts import ARB
 from suslov.kernel.cost import enclosure_seconds, monodromy_seconds, seconds_limit
-from suslov.kernel.gauss_angle import arb_root
+from suslov.kernel.gauss_angle import gauss_parameters
 from suslov.kernel.kimura import GaloisGroup, exact_body, exact_invariants
 from suslov.kernel.kimura import galois_group as _galois_group
 from suslov.kernel.validate import PREC_RANGE, ball_prec, mp_dps, precision, renamed_keywords
@@ -86,6 +85,9 @@ class HypergeometricForm:
     exact: dict | None            # exact input: U^2, Re w_-^2 (Fractions), Im w_-^2 = q sqrt(R) as (q, R)
 
 
+MAX_ENTRY_BITS = 20_000   # hypergeometric_form: the largest numerator or denominator of an entry, in bits
+
+
 def hypergeometric_form(I11, I22, I13, I23, dps: int | None = None, prec: int | None = None) -> HypergeometricForm:
     """Gauss's hypergeometric equation of the Poisson equations of a body (the general case in closed form).
 
@@ -96,20 +98,54 @@ def hypergeometric_form(I11, I22, I13, I23, dps: int | None = None, prec: int | 
     are complex balls at ``prec`` bits or ``dps`` digits (default ``mpmath.mp.prec``); for exact input (ints, Fractions,
     decimal strings, floats as their binary value) ``exact`` holds the squares exactly.
 
+    The balls are formed from those exact squares (:func:`suslov.kernel.gauss_angle.gauss_parameters`): the
+    differences that cancel (``I11 - I22`` of a nearly symmetric body, ``U - X``, ``1 - Y/2``) are taken in
+    exact integers, so every real and imaginary part that is not exactly 0 carries ``prec`` bits relative to
+    itself for entries of any size (``hypergeometric_form(10**100, 10**100 - 1, 10**99, 3)``).  The working
+    precision is doubled while a part falls short of that (up to 8 times ``prec + 20``), then a
+    ``ValueError`` says so -- never a NaN.  Entries whose numerator or denominator exceeds
+    ``MAX_ENTRY_BITS`` (20000 bits, about 6000 digits) are refused with a ``ValueError`` naming the entry.
+
     >>> form = hypergeometric_form(2, 1, 0, "-1/3")       # I13 = 0, p = 3: kappa = -3/2
     >>> form.points["s=i"], form.C.real.mid() == -0.5, form.exact["Re w_-^2"]
     (0, True, Fraction(-9, 1))
     """
     exact_values = exact_body(I11, I22, I13, I23)
-    with ctx.workprec(ball_prec(dps, prec) + 20):
-        body = [arb(q.numerator) / q.denominator for q in exact_values]
-        U2, a, b, _ = gf._gauss_invariants(ARB, *body)
-        X, Y = arb_root(a, b)
-        kappa, mu, iU = acb(-Y, X) / 2, acb(Y, X) / 2, acb(0, U2.sqrt())
-        A, B, C = (2 + kappa + mu + iU) / 2, (kappa + mu - iU) / 2, 1 + kappa
+    for name, given, value in zip(("I11", "I22", "I13", "I23"), (I11, I22, I13, I23), exact_values):
+        bits = max(value.numerator.bit_length(), value.denominator.bit_length())
+        if bits > MAX_ENTRY_BITS:
+            raise ValueError(f"{name}={_shown(given, value)}: its numerator or denominator has {bits} bits, beyond the "
+                             f"{MAX_ENTRY_BITS} bits hypergeometric_form accepts (the exact invariants cost "
+                             "about the square of the size)")
     exact = exact_invariants(*exact_values)
+    target = ball_prec(dps, prec)
+    working = target + 20
+    while True:
+        with ctx.workprec(working):
+            A, B, C, kappa, mu, iU = gauss_parameters(exact["U^2"], exact["Re w_-^2"], *exact["Im w_-^2"])
+        short = [f"{name}.{part}" for name, z in (("A", A), ("B", B), ("C", C))
+                 for part, x in (("real", z.real), ("imag", z.imag))
+                 if not x.is_finite() or not (x.is_zero() or x.rel_accuracy_bits() >= target)]
+        if not short:
+            break
+        if working >= 8 * (target + 20):
+            shown = ", ".join(_shown(x, q) for x, q in zip((I11, I22, I13, I23), exact_values))
+            raise ValueError(f"hypergeometric_form({shown}): "
+                             f"{', '.join(short)} not within {target} bits at {working} working bits; this body "
+                             f"needs more than {working} bits of working precision")
+        working *= 2
     return HypergeometricForm(A, B, C, {"s=i": 0, "s=-i": 1, "s=oo": "oo"},
                               {"s=i": kappa, "s=-i": mu, "s=oo": iU}, (kappa, mu, 1 + iU), exact)
+
+
+def _shown(given, value) -> str:
+    """An entry for a message: as given when short, else its size (a 6000-digit int is not printed; Python
+    refuses to convert ints beyond 4300 digits to text)."""
+    if value.numerator.bit_length() + value.denominator.bit_length() <= 200 or (isinstance(given, str)
+                                                                                  and len(given) <= 60):
+        return repr(given) if isinstance(given, str) else str(value)
+    decades = round((abs(value.numerator).bit_length() - value.denominator.bit_length()) * math.log10(2))
+    return f"<a rational of about 10^{decades}>"
 
 
 def galois_group(I11, I22, I13, I23) -> GaloisGroup:

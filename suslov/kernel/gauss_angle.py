@@ -20,16 +20,20 @@ this module computes its four arguments from the emitted invariants ``(U^2, a, b
 * ``h = pi U/2``, ``g = pi (U - X)/2``, ``s = |sin(pi Y/2)|``, ``c = |cos(pi Y/2)|`` (in float64 with
   Y reduced modulo 2 exactly: ``suslov.kernel.phase.half_pi_parts``).
 
-``U^2 + |v|^2 = 2 U^2 - a >= U^2`` (``a <= U^2``), so that sum loses nothing either.  No SymPy, no
-``generated`` import (the kernel layer).
+``U^2 + |v|^2 = 2 U^2 - a >= U^2`` (``a <= U^2``), so that sum loses nothing either.
+:func:`gauss_parameters` forms Gauss's A, B, C (``suslov.validated.hypergeometric_form``) from the exact
+invariants the same way, the cancelling differences in integers.  No SymPy, no ``generated`` import
+(the kernel layer).
 """
 from __future__ import annotations
 
+from fractions import Fraction
+
 import mpmath
 import numpy as np
-from flint import arb
+from flint import acb, arb
 
-__all__ = ["float_lengths", "mp_arguments", "arb_arguments", "arb_root"]
+__all__ = ["float_lengths", "mp_arguments", "arb_arguments", "arb_root", "gauss_parameters"]
 
 
 def float_lengths(U2, a, b, c2) -> tuple:
@@ -86,3 +90,55 @@ def arb_root(a: arb, b: arb) -> tuple:
         return arb(0), arb(0)
     X = ((modulus + a) / 2).sqrt()
     return X, b / (2 * X)
+
+
+def _quotient(numerator: int, denominator: int) -> arb:
+    """``numerator/denominator`` (integers, denominator > 0) as a ball at ``flint.ctx.prec``: ``arb(int)`` is
+    exact whatever its size, so the only rounding is the division's (relative, at any magnitude)."""
+    return arb(numerator) / denominator
+
+
+def gauss_parameters(U2: Fraction, a: Fraction, q: Fraction, R: Fraction) -> tuple:
+    """``(A, B, C, kappa, mu, iU)`` of Gauss's equation (:func:`suslov.validated.hypergeometric_form`) as
+    complex balls at ``flint.ctx.prec``, from the exact invariants ``U^2``, ``a = Re w_-^2`` and
+    ``Im w_-^2 = b = q sqrt(R)`` (:func:`suslov.kernel.kimura.exact_invariants`).
+
+    With ``w_- = X + iY`` (``X >= 0``, :func:`arb_root`), ``kappa = (i/2) w_- = (-Y + iX)/2``,
+    ``mu = (i/2) conj(w_-) = (Y + iX)/2`` and ``kappa + mu = iX``:
+
+    * ``A = (2 + kappa + mu + iU)/2 = 1 + i (U + X)/2`` (a sum of non-negative numbers);
+    * ``B = (kappa + mu - iU)/2 = -i (U - X)/2``, the gap ``U - X = 2 c2 / ((2U^2 - a + |w^2|)(U + X))``
+      with ``4 c2 = 4 U^2 (U^2 - a) - q^2 R`` (``(U^2 + |v|^2)^2 - |w^2|^2 = 4 c2``, certified: gauss) formed
+      exactly in integers: no difference of nearly equal balls;
+    * ``C = 1 + kappa = 1 - Y/2 + iX/2``; for ``Y > 0``, ``1 - Y/2 = (8 + a - |w^2|) / (4 (2 + Y))`` (from
+      ``Y^2 = (|w^2| - a)/2``) and, when ``8 + a > 0``, ``8 + a - |w^2| = (64 + 16 a - q^2 R) / (8 + a + |w^2|)``
+      with the numerator exact: ``Re C`` keeps its relative accuracy near ``Y = 2`` too (0 exactly when it is).
+
+    Every rational enters as one rounded quotient of exact integers, so every part has a relative error of
+    a few units of ``ctx.prec`` whatever the size of the entries (10^100 or 10^-100 alike).
+    """
+    nU, dU = U2.numerator, U2.denominator
+    na, da = a.numerator, a.denominator
+    nq, dq = q.numerator, q.denominator
+    bn, bd = nq * nq * R.numerator, dq * dq * R.denominator          # b^2 = q^2 R = bn/bd
+    U2b, ab = _quotient(nU, dU), _quotient(na, da)
+    b = _quotient(nq, dq) * _quotient(R.numerator, R.denominator).sqrt()
+    modulus = _quotient(na * na * bd + bn * da * da, da * da * bd).sqrt()    # |w^2| = sqrt(a^2 + q^2 R)
+    X, Y = arb_root(ab, b)
+    U = U2b.sqrt()
+    c4n = 4 * nU * (nU * da - na * dU) * bd - bn * dU * dU * da            # 4 c2 = c4n / (dU^2 da bd)
+    if c4n <= 0:
+        raise ArithmeticError(f"4 c2 = {Fraction(c4n, dU * dU * da * bd)} <= 0: not the invariants of a body "
+                              "(c2 = (u x v)_3^2 > 0 for every body)")
+    gap = _quotient(c4n, 2 * dU * dU * da * bd) / ((2 * U2b - ab + modulus) * (U + X))
+    if nq > 0 or (nq == 0 and na < 0):          # Y > 0 (arb_root: Y has the sign of b; Y >= 0 when b = 0)
+        shifted = 8 * da + na                    # 8 + a = shifted/da
+        if shifted > 0:
+            difference = _quotient((64 * da + 16 * na) * bd - bn * da, da * bd) / (_quotient(shifted, da) + modulus)
+        else:
+            difference = _quotient(shifted, da) - modulus
+        real_c = difference / (4 * (2 + Y))
+    else:
+        real_c = 1 - Y / 2
+    kappa, mu, iU = acb(-Y, X) / 2, acb(Y, X) / 2, acb(0, U)
+    return acb(1, (U + X) / 2), acb(0, -gap / 2), acb(real_c, X / 2), kappa, mu, iU

@@ -136,13 +136,13 @@ def step_angle_general_closed_form(run: Run):
 
 
 def step_angle_enclosure(run: Run):
+    from suslov.kernel.display import ball_fields
     from suslov.simulator import exact  # python-flint balls only when asked for
 
     body = run.plan.body.exact
     enclosure = exact.enclosure(body, dps=20)
     run.results["scattering_angle_enclosure"] = {
-        "ball": enclosure.angle.str(25), "midpoint": float(enclosure.angle.mid()),
-        "radius": float(enclosure.angle.rad()),
+        **ball_fields(enclosure.angle),   # the printed ball and the radius agree
         "method": "closed form of every body (Gauss's equation in s = sinh t, certified) in ball arithmetic, rigorous, "
                   + body.whose(),
         "entries_paper_frame": body.entries_text(), "body": body.as_json()}
