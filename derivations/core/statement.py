@@ -164,7 +164,19 @@ FUNCTIONS = {
 }
 CONSTANTS = {"i": sp.I, "pi": sp.pi, "oo": sp.oo, "E": sp.E, "True": sp.true, "False": sp.false}
 # what the parser's generated code needs besides the names above
-_PARSER_GLOBALS = {name: getattr(sp, name) for name in ("Symbol", "Integer", "Float", "Rational", "Function", "Add", "Mul", "Pow", "Eq", "Ne", "Lt", "Le", "Gt", "Ge", "Tuple")}
+_PARSER_GLOBALS = {name: getattr(sp, name) for name in ("Symbol", "Integer", "Float", "Rational", "Function", "Add", "Mul", "Pow", "Tuple")}
+
+
+def _written_relation(kind):
+    """``kind(a, b)`` as written: ``convert_equals_signs`` emits ``Eq(a, b)`` without ``evaluate=False``, and an
+    evaluated relation asks SymPy's assumptions whether it holds (about a quarter of a cold build's main
+    process went there); a relation is a formula to print, never a question to decide."""
+    def relation(lhs, rhs, **_):
+        return kind(lhs, rhs, evaluate=False)
+    return relation
+
+
+_PARSER_GLOBALS.update({name: _written_relation(getattr(sp, name)) for name in ("Eq", "Ne", "Lt", "Le", "Gt", "Ge")})
 _TRANSFORMATIONS = standard_transformations + (implicit_multiplication, implicit_application,
                                                function_exponentiation, convert_xor, convert_equals_signs)
 

@@ -226,8 +226,8 @@ def context(build: Build) -> dict:
     }
 
 
-def certificate_document(build: Build) -> dict:
-    ctx = context(build)
+def certificate_document(build: Build, ctx: dict | None = None) -> dict:
+    ctx = ctx or context(build)
     return {
         "pmax": ctx["pmax"],
         "ball_checks": build.options.ball_checks,
@@ -238,16 +238,17 @@ def certificate_document(build: Build) -> dict:
     }
 
 
-def render_into(build: Build, directory: Path) -> list[str]:
-    """Write every output whose derivations ran into ``directory``."""
+def render_into(build: Build, directory: Path, only: tuple[str, ...] | None = None) -> list[str]:
+    """Write every output whose derivations ran into ``directory`` (of the templated ones, those named in
+    ``only`` where given; the JSON files always)."""
     ctx = context(build)
     written = []
     for template, filename, needs in OUTPUTS:
-        if all(n in build.results for n in needs):
+        if all(n in build.results for n in needs) and (only is None or filename in only):
             (directory / filename).write_text(render(template, ctx), encoding="utf-8")
             written.append(filename)
     (directory / "certificates.json").write_text(
-        json.dumps(certificate_document(build), indent=1, sort_keys=True) + "\n", encoding="utf-8")
+        json.dumps(certificate_document(build, ctx), indent=1, sort_keys=True) + "\n", encoding="utf-8")
     (directory / "certificate_costs.json").write_text(
         json.dumps({k: round(s, 6) for k, _, s in ctx["costs"]}, indent=1, sort_keys=True) + "\n",
         encoding="utf-8")
@@ -284,13 +285,22 @@ def write_atomically(build: Build, target: Path) -> None:
     outdir.make_dir(target.parent)
     staging = outdir.new_staging(target, BUILD_TOOL)
     try:
-        if render_into(build, staging).count("suslov_formulas.py") and not build.round_trip_done:
-            # certify the module as emitted, then render again so the round-trip certificates are in every output
+        module_first = ("__init__.py", "suslov_formulas.py")
+        if build.round_trip_done or "suslov_formulas.py" not in render_into(build, staging, only=module_first):
+            render_into(build, staging)
+        else:
+            # certify the module as emitted (it and certificates.json are all the round trip reads; the module's
+            # text does not depend on the round trip's certificates), then render everything, so the round-trip
+            # certificates are in every output
             from derivations.output.roundtrip import certify_module
 
+            emitted = (staging / "suslov_formulas.py").read_bytes()
             certify_module(build.log, build, staging)
             build.round_trip_done = True
             render_into(build, staging)
+            if (staging / "suslov_formulas.py").read_bytes() != emitted:
+                raise RuntimeError("the emitted module changed after its round trip: the certified text is not the "
+                                   "one written")
         write_manifest(staging)
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
