@@ -108,8 +108,8 @@ def parser() -> argparse.ArgumentParser:
                          "write a latexdiff PDF of the formulas document into build/diff/ (needs latexdiff)")
     ap.add_argument("--ball-checks", choices=BALL_CHECKS, default=BuildOptions().ball_checks,
                     help="how many seeded bodies corroborate the analytic step of the general scattering angle "
-                         "(complex-path monodromy and ss enclosures in balls): 'default' the first 4 traces, 8 "
-                         "angles and 1 deep angle (seconds), 'full' all 20 bodies at 100 digits (about 25 s more "
+                         "(complex-path monodromy and ss enclosures in balls): 'default' the first 2 traces, 4 "
+                         "angles and 1 deep angle at 30 digits (seconds), 'full' all 20 bodies at 100 digits (about 25 s more "
                          "on one core); the certificates say which")
     ap.add_argument("--jobs", type=_jobs, default=None, metavar="N",
                     help="worker processes for the per-p certificates (default: all cores; 1: none); the outputs "

@@ -69,10 +69,10 @@ class BallTier:
     deep_digits: int
 
 
-# "default" keeps the cold build in seconds (about 4 s of ball work, not 26 s); "full" is the set the
+# "default" keeps the cold build in seconds (about 2.5 s of ball work, not 26 s); "full" is the set the
 # analytic step was first corroborated on (build_formulas.py --ball-checks full; tests/test_general_angle_balls.py
 # runs it without a build)
-BALL_TIERS = {"default": BallTier(4, 100, 8, 20, 1, 40),
+BALL_TIERS = {"default": BallTier(2, 100, 4, 20, 1, 30),
               "full": BallTier(SEEDED, 100, SEEDED, 20, 2, 100)}
 
 
