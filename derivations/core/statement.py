@@ -430,10 +430,11 @@ def ring(name: str) -> Ring:
 class Statement:
     """Words and mathematics: ``parts`` is a tuple of ``str`` (prose), SymPy objects and rings."""
 
-    __slots__ = ("parts", "source")
+    __slots__ = ("parts", "source", "_printed")
 
     def __init__(self, *parts, source: str | None = None):
         self.source = source        # the "words $formula$" text it was read from (pickled as that)
+        self._printed = {}          # "text"/"tex" -> the printed form (parts never change once made)
         flat = []
         for part in parts:
             if isinstance(part, Statement):
@@ -452,10 +453,14 @@ class Statement:
         return (_from_parts, (self.parts,))
 
     def text(self) -> str:
-        return "".join(text_of(p) for p in self.parts)
+        if "text" not in self._printed:   # the certificates document and each render print it again
+            self._printed["text"] = "".join(text_of(p) for p in self.parts)
+        return self._printed["text"]
 
     def tex(self) -> str:
-        return "".join(tex_of(p) for p in self.parts)
+        if "tex" not in self._printed:
+            self._printed["tex"] = "".join(tex_of(p) for p in self.parts)
+        return self._printed["tex"]
 
     def expressions(self) -> list:
         """The mathematical parts (rings as their generators and relations)."""
