@@ -12,8 +12,12 @@ run: wall time and the peak resident memory of the largest process
 fits the growth exponent k of the cost of one p (cost ~ p^k over the upper half of p) for each
 per-p phase, and extrapolates the phase to pmax 101 and 201 (sum of c p^k).
 
+``--repeat N`` (issue 43) first times the default cold build N times, alternating with the baseline's
+when ``--baseline`` is given (the two see the same machine state; the table quotes medians and their
+ratio), and ``build_formulas.py --verify`` of each tree N times.
+
 Run: ``python bench/bench_build.py [--pmax 15 51 101 201] [--one-process-max 101] [--baseline REV]
-[--baseline-pmax 15 51]`` (about 20 minutes with the defaults on the 2-core machine, plus the
+[--baseline-pmax 15 51] [--repeat 5]`` (about 20 minutes with the defaults on the 2-core machine, plus the
 baseline's builds; pmax 201 is built on all cores only); writes ``bench/results/build.md`` and ``.json``.
 """
 from __future__ import annotations
@@ -25,6 +29,7 @@ import os
 import platform
 import re
 import resource
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -65,6 +70,40 @@ def build(pmax: int, jobs: int | None, out: Path, cache: Path | None = None, roo
     estimates = [round((float(a) + float(b)) / wall, 3) for a, b in ESTIMATE.findall(proc.stderr)]
     return {"pmax": pmax, "jobs": jobs or "all cores", "wall_seconds": wall, "peak_rss_mib": peak / 1024,
             "derivations": derivations, "estimate_over_wall": estimates}
+
+
+def verify_seconds(tree: Path, root: Path = ROOT) -> float:
+    """Wall seconds of ``build_formulas.py --verify tree`` with ``root``'s sources (it must pass)."""
+    start = time.perf_counter()
+    proc = subprocess.run([sys.executable, str(root / "build_formulas.py"), "--verify", str(tree), "--quiet"],
+                          capture_output=True, text=True, cwd=root, env=dict(os.environ, PYTHONPATH=str(root)))
+    if proc.returncode != 0:
+        raise RuntimeError(f"--verify {tree} failed:\n{proc.stderr[-2000:]}")
+    return time.perf_counter() - start
+
+
+def interleaved(repeat: int, tmp: Path, tree: Path | None) -> dict:
+    """The default cold build (all cores) ``repeat`` times, alternating with the baseline's (``tree``), then
+    ``--verify`` of each output ``repeat`` times: every sample and the medians."""
+    pmax = 15
+    ours, base, verify_ours, verify_base = [], [], [], []
+    for i in range(repeat):
+        ours.append(build(pmax, None, tmp / f"ours-{i}")["wall_seconds"])
+        if tree is not None:
+            base.append(build(pmax, None, tmp / f"base-{i}", root=tree)["wall_seconds"])
+        print(f"default cold build {i + 1}/{repeat}: {ours[-1]:.1f} s" + (f", baseline {base[-1]:.1f} s" if base else ""),
+              file=sys.stderr)
+    for i in range(repeat):
+        verify_ours.append(verify_seconds(tmp / "ours-0"))
+        if tree is not None:
+            try:
+                verify_base.append(verify_seconds(tmp / "base-0", tree))
+            except RuntimeError as failure:   # an old revision may not verify its own tree: said, not timed
+                print(f"baseline --verify: {str(failure).splitlines()[-1]}", file=sys.stderr)
+    median = lambda xs: statistics.median(xs) if xs else None  # noqa: E731
+    return {"pmax": pmax, "ours": ours, "baseline": base, "verify_ours": verify_ours, "verify_baseline": verify_base,
+            "median_ours": median(ours), "median_baseline": median(base), "median_verify_ours": median(verify_ours),
+            "median_verify_baseline": median(verify_base)}
 
 
 def per_p_costs(out: Path) -> dict:
@@ -135,6 +174,23 @@ def report(data: dict) -> str:
         warm = f"{warm:.1f}" if warm is not None else ""
         lines.append(f"| {r['pmax']} | {r['jobs']} | {r['wall_seconds']:.1f} | {warm} | {r['peak_rss_mib']:.0f} | "
                      + " | ".join(cells) + " |")
+    paired = data.get("interleaved")
+    if paired:
+        base_rev = (data.get("baseline") or {}).get("revision")
+        lines += ["", f"## The default cold build, {len(paired['ours'])} times"
+                  + (f" alternating with {base_rev}" if base_rev else "") + " (all cores, `--no-cache`; medians)", "",
+                  "| | this revision (s) | " + (f"{base_rev} (s) | ratio |" if base_rev else ""),
+                  "| --- | ---: | " + ("---: | ---: |" if base_rev else "")]
+        for what, mine, theirs in (("cold build, default pmax", paired["median_ours"], paired["median_baseline"]),
+                                   ("`--verify` of the tree", paired["median_verify_ours"],
+                                    paired["median_verify_baseline"])):
+            row = f"| {what} | {mine:.1f} |"
+            if base_rev:
+                row += f" {theirs:.1f} | {mine / theirs:.2f} |" if theirs else " | |"
+            lines.append(row)
+        lines += ["", "Samples (s): this revision " + ", ".join(f"{x:.1f}" for x in paired["ours"])
+                  + ("; baseline " + ", ".join(f"{x:.1f}" for x in paired["baseline"]) if paired["baseline"] else "")
+                  + "; --verify " + ", ".join(f"{x:.1f}" for x in paired["verify_ours"]) + "."]
     if data.get("baseline"):
         base = data["baseline"]
         ours = {r["pmax"]: r["wall_seconds"] for r in data["runs"] if r["jobs"] != 1}
@@ -199,9 +255,22 @@ def main(argv=None):
     ap.add_argument("--baseline", metavar="REV", help="also build this git revision (the old way) on all cores, "
                     "in the same run, for --baseline-pmax")
     ap.add_argument("--baseline-pmax", type=int, nargs="+", default=[15, 51])
+    ap.add_argument("--repeat", type=int, default=0, help="time the default cold build this many times first, "
+                    "alternating with the baseline's, and --verify of each tree (medians)")
     args = ap.parse_args(argv)
-    runs, warm = [], {}
+    runs, warm, paired = [], {}, None
     with tempfile.TemporaryDirectory() as tmp:
+        if args.repeat:
+            tree = None
+            if args.baseline:
+                tree = Path(tmp) / "paired-baseline"
+                subprocess.run(["git", "worktree", "add", "--detach", "-q", str(tree), args.baseline], cwd=ROOT,
+                               check=True)
+            try:
+                paired = interleaved(args.repeat, Path(tmp), tree)
+            finally:
+                if tree is not None:
+                    subprocess.run(["git", "worktree", "remove", "--force", str(tree)], cwd=ROOT, check=False)
         for pmax in args.pmax:
             if pmax <= args.one_process_max:
                 runs.append(build(pmax, 1, Path(tmp) / f"p{pmax}-1"))   # the old way: one process, cold
@@ -219,6 +288,7 @@ def main(argv=None):
         baseline = run_baseline(args.baseline, args.baseline_pmax, Path(tmp)) if args.baseline else []
     data = {"machine": cpu_name(), "python": platform.python_version(), "runs": runs, "warm": warm,
             "baseline": {"revision": args.baseline, "runs": baseline} if args.baseline else None,
+            "interleaved": paired,
             "largest_pmax": largest, "costs_from": costs_from,
             "growth": growth(costs), "per_p_costs": {k: {str(p): s for p, s in v.items()} for k, v in costs.items()}}
     write_results("build", data, report(data))

@@ -18,13 +18,27 @@ os.environ["SUSLOV_NO_CACHE"] = "1"
 from derivations.core.options import BuildOptions
 from derivations.output.pipeline import derive
 
+ROOT = Path(__file__).resolve().parents[1]
+
 
 @pytest.fixture(scope="session")
 def default_build():
     return derive(BuildOptions())
 
 
-ROOT = Path(__file__).resolve().parents[1]
+@pytest.fixture(scope="session")
+def cli_build(tmp_path_factory):
+    """``(out, env)``: one cold default build by the command line, as a user runs it (a second process,
+    independent of :func:`default_build`), into ``out``, filling a whole-build cache of its own; ``env``
+    points at that cache with the cache on, so that ``--check`` in this session compares against this
+    build instead of building again (tests that perturb derivations never use it)."""
+    root = tmp_path_factory.mktemp("cli_build")
+    env = {k: v for k, v in os.environ.items() if k != "SUSLOV_NO_CACHE"}
+    env["SUSLOV_CACHE_DIR"] = str(root / "cache")
+    done = subprocess.run([sys.executable, str(ROOT / "build_formulas.py"), "--quiet", "--out", str(root / "out")],
+                          cwd=ROOT, env=env, capture_output=True, text=True, timeout=900)
+    assert done.returncode == 0, done.stderr[-3000:]
+    return root / "out", env
 
 
 def working_tree(target: Path) -> None:

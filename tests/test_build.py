@@ -31,10 +31,10 @@ def tree_digest(root: Path) -> str:
     return h.hexdigest()
 
 
-def test_two_builds_are_byte_identical(tmp_path, default_build):
+def test_two_builds_are_byte_identical(tmp_path, default_build, cli_build):
+    """Two cold builds, one in this process and one by the command line in another, byte for byte."""
     write_atomically(default_build, tmp_path / "a")
-    write_atomically(derive(BuildOptions()), tmp_path / "b")
-    assert compare_trees(tmp_path / "a", tmp_path / "b") == []
+    assert compare_trees(tmp_path / "a", cli_build[0]) == []
 
 
 def test_committed_generated_equals_default_build(tmp_path, default_build):
@@ -89,8 +89,9 @@ def test_failure_while_rendering_leaves_output_untouched(tmp_path, monkeypatch):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["generated"]  # no staging left behind
 
 
-def run_cli(*args):
-    return subprocess.run([sys.executable, "build_formulas.py", *args], cwd=ROOT, capture_output=True, text=True)
+def run_cli(*args, env=None):
+    return subprocess.run([sys.executable, "build_formulas.py", *args], cwd=ROOT, capture_output=True, text=True,
+                          env=env)
 
 
 @pytest.mark.parametrize("args, needle", [
@@ -109,15 +110,20 @@ def test_bad_command_line_is_one_clear_line_and_touches_nothing(args, needle):
     assert tree_digest(GENERATED) == before
 
 
-def test_check_passes_on_committed_tree():
-    proc = run_cli("--check", "--quiet")
+def test_check_passes_on_committed_tree(cli_build):
+    # compared with this session's command-line build (from its cache): the committed tree is a fresh build's
+    proc = run_cli("--check", "--quiet", env=cli_build[1])
     assert proc.returncode == 0, proc.stderr
     assert "identical" in proc.stdout
 
 
-def test_check_detects_a_difference(tmp_path, default_build):
+def test_check_detects_a_difference(tmp_path, default_build, cli_build, monkeypatch):
     write_atomically(default_build, tmp_path / "g")
     (tmp_path / "g" / "errata_table.tex").write_text("tampered\n")
+    for name, value in cli_build[1].items():
+        if name.startswith("SUSLOV"):
+            monkeypatch.setenv(name, value)
+    monkeypatch.delenv("SUSLOV_NO_CACHE", raising=False)
     assert build_formulas.main(["--check", "--quiet", "--out", str(tmp_path / "g")]) == 3
 
 
