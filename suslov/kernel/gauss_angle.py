@@ -33,7 +33,7 @@ import mpmath
 import numpy as np
 from flint import acb, arb
 
-__all__ = ["float_lengths", "mp_arguments", "arb_arguments", "arb_root", "gauss_parameters"]
+__all__ = ["arb_arguments", "arb_arguments_and_phase", "arb_root", "float_lengths", "gauss_parameters", "mp_arguments"]
 
 
 def float_lengths(U2, a, b, c2) -> tuple:
@@ -71,12 +71,18 @@ def mp_arguments(U2, a, b, c2) -> tuple:
 
 def arb_arguments(U2: arb, a: arb, b: arb, c2: arb) -> tuple:
     """(h, g, s, c) as balls (precision ``flint.ctx.prec``) containing the exact values at the ball inputs."""
+    return arb_arguments_and_phase(U2, a, b, c2)[:4]
+
+
+def arb_arguments_and_phase(U2: arb, a: arb, b: arb, c2: arb) -> tuple:
+    """(h, g, s, c, |Y|) as balls: :func:`arb_arguments` and the ball of ``|Y|`` it took s and c from (its radius
+    says how far the working precision is from resolving the phase pi Y/2 modulo 2)."""
     X, Y = arb_root(a, b)
     modulus = (a * a + b * b).sqrt()
     U = U2.sqrt()
     gap = 2 * c2 / ((2 * U2 - a + modulus) * (U + X))
     half = abs(Y) / 2
-    return arb.pi() * U / 2, arb.pi() * gap / 2, abs(half.sin_pi()), abs(half.cos_pi())
+    return arb.pi() * U / 2, arb.pi() * gap / 2, abs(half.sin_pi()), abs(half.cos_pi()), abs(Y)
 
 
 def arb_root(a: arb, b: arb) -> tuple:
