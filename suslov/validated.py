@@ -32,7 +32,8 @@ from suslov.kernel.cost import enclosure_seconds, monodromy_seconds, seconds_lim
 from suslov.kernel.gauss_angle import gauss_parameters
 from suslov.kernel.kimura import GaloisGroup, exact_body, exact_invariants
 from suslov.kernel.kimura import galois_group as _galois_group
-from suslov.kernel.validate import PREC_RANGE, ball_prec, mp_dps, precision, renamed_keywords
+from suslov.kernel.validate import MAX_ENTRY_BITS  # noqa: F401 (the one size limit of exact input, named here too)
+from suslov.kernel.validate import PREC_RANGE, ball_prec, mp_dps, precision, rational, renamed_keywords, shown
 from suslov.loader import gf
 
 __all__ = ["AngleEnclosure", "EnclosureTooCostly", "GaloisGroup", "HypergeometricForm", "MonodromyTooCostly",
@@ -85,9 +86,6 @@ class HypergeometricForm:
     exact: dict | None            # exact input: U^2, Re w_-^2 (Fractions), Im w_-^2 = q sqrt(R) as (q, R)
 
 
-MAX_ENTRY_BITS = 20_000   # hypergeometric_form: the largest numerator or denominator of an entry, in bits
-
-
 def hypergeometric_form(I11, I22, I13, I23, dps: int | None = None, prec: int | None = None) -> HypergeometricForm:
     """Gauss's hypergeometric equation of the Poisson equations of a body (the general case in closed form).
 
@@ -104,19 +102,15 @@ def hypergeometric_form(I11, I22, I13, I23, dps: int | None = None, prec: int | 
     itself for entries of any size (``hypergeometric_form(10**100, 10**100 - 1, 10**99, 3)``).  The working
     precision is doubled while a part falls short of that (up to 8 times ``prec + 20``), then a
     ``ValueError`` says so -- never a NaN.  Entries whose numerator or denominator exceeds
-    ``MAX_ENTRY_BITS`` (20000 bits, about 6000 digits) are refused with a ``ValueError`` naming the entry.
+    ``MAX_ENTRY_BITS`` (:mod:`suslov.kernel.validate`: 20000 bits, about 6000 digits; the exact invariants cost
+    about the square of the size) are refused with a ``ValueError`` naming the entry, strings before they are
+    converted (``"1e10000000"``).
 
     >>> form = hypergeometric_form(2, 1, 0, "-1/3")       # I13 = 0, p = 3: kappa = -3/2
     >>> form.points["s=i"], form.C.real.mid() == -0.5, form.exact["Re w_-^2"]
     (0, True, Fraction(-9, 1))
     """
-    exact_values = exact_body(I11, I22, I13, I23)
-    for name, given, value in zip(("I11", "I22", "I13", "I23"), (I11, I22, I13, I23), exact_values):
-        bits = max(value.numerator.bit_length(), value.denominator.bit_length())
-        if bits > MAX_ENTRY_BITS:
-            raise ValueError(f"{name}={_shown(given, value)}: its numerator or denominator has {bits} bits, beyond the "
-                             f"{MAX_ENTRY_BITS} bits hypergeometric_form accepts (the exact invariants cost "
-                             "about the square of the size)")
+    exact_values = exact_body(I11, I22, I13, I23)   # at most MAX_ENTRY_BITS each, checked before conversion
     exact = exact_invariants(*exact_values)
     target = ball_prec(dps, prec)
     working = target + 20
@@ -129,23 +123,13 @@ def hypergeometric_form(I11, I22, I13, I23, dps: int | None = None, prec: int | 
         if not short:
             break
         if working >= 8 * (target + 20):
-            shown = ", ".join(_shown(x, q) for x, q in zip((I11, I22, I13, I23), exact_values))
-            raise ValueError(f"hypergeometric_form({shown}): "
+            body = ", ".join(shown(x) for x in (I11, I22, I13, I23))
+            raise ValueError(f"hypergeometric_form({body}): "
                              f"{', '.join(short)} not within {target} bits at {working} working bits; this body "
                              f"needs more than {working} bits of working precision")
         working *= 2
     return HypergeometricForm(A, B, C, {"s=i": 0, "s=-i": 1, "s=oo": "oo"},
                               {"s=i": kappa, "s=-i": mu, "s=oo": iU}, (kappa, mu, 1 + iU), exact)
-
-
-def _shown(given, value) -> str:
-    """An entry for a message: as given when short, else its size (a 6000-digit int is not printed; Python
-    refuses to convert ints beyond 4300 digits to text)."""
-    if value.numerator.bit_length() + value.denominator.bit_length() <= 200 or (isinstance(given, str)
-                                                                                  and len(given) <= 60):
-        return repr(given) if isinstance(given, str) else str(value)
-    decades = round((abs(value.numerator).bit_length() - value.denominator.bit_length()) * math.log10(2))
-    return f"<a rational of about 10^{decades}>"
 
 
 def galois_group(I11, I22, I13, I23) -> GaloisGroup:
@@ -154,7 +138,8 @@ def galois_group(I11, I22, I13, I23) -> GaloisGroup:
     ``group``: "reducible" (the torus SO(2,C) of rotations about ``u/|u|``; Liouvillian) exactly when
     ``u.v = 0`` and ``w_-^2 = -P^2`` with P odd (I13 = 0 with odd p, or I23 = 0 with odd p by eq:lina), else
     "SO(3,C)"; ``method`` says "exact".  Entries are read exactly (decimal strings and floats as the
-    numbers they are).  The equilibrium I13 = I23 = 0 and I11 <= 0 or I22 <= 0 raise ``ValueError``.
+    numbers they are), at most ``MAX_ENTRY_BITS`` bits each (:mod:`suslov.kernel.validate`).  The equilibrium
+    I13 = I23 = 0 and I11 <= 0 or I22 <= 0 raise ``ValueError``.
     The theorem and its proof: :mod:`suslov.kernel.kimura`.
 
     >>> g = galois_group("5/4", 1, "3/10", "-1/2")
@@ -260,7 +245,7 @@ def monodromy(I11, I22, I13, I23, dps: int | None = None, branch: int = 1, max_d
     ('SO(3,C)', False)
     """
     from suslov.kernel.fuchsian_flow import guard_digits, residues
-    from suslov.kernel.monodromy import compute_monodromy, decide_group
+    from suslov.kernel.monodromy import MAX_WORKING_DIGITS, compute_monodromy, decide_group
 
     old = renamed_keywords("monodromy", deprecated, digits="dps", max_digits="max_dps")
     dps, max_dps = old.get("dps", dps), old.get("max_dps", max_dps)
@@ -268,7 +253,8 @@ def monodromy(I11, I22, I13, I23, dps: int | None = None, branch: int = 1, max_d
     ceiling = min(4 * digits, 200) if max_dps is None else precision("max_dps", max_dps, (digits, 200))
 
     def coefficients(working_digits: int):
-        with ctx.workprec(int(3.33 * working_digits) + 64):
+        # beyond MAX_WORKING_DIGITS nothing is integrated (compute_monodromy says so): no precision of 1e300 digits
+        with ctx.workprec(int(3.33 * min(working_digits, MAX_WORKING_DIGITS + 1)) + 64):
             return omega_coefficients(I11, I22, I13, I23, branch)
 
     limit = seconds_limit(max_seconds)
@@ -305,7 +291,7 @@ class _MonodromyClock:
             group = f"the group itself, decided exactly: {_galois_group(*self.body).group} (galois_group)"
         except ValueError as error:
             group = f"no exact decision ({error})"
-        raise MonodromyTooCostly(f"monodromy{tuple(str(x) for x in self.body)}: {why}; it needs {self.working} "
+        raise MonodromyTooCostly(f"monodromy({', '.join(shown(x) for x in self.body)}): {why}; it needs {self.working} "
                                  f"working digits (|omega| is large near the equilibrium I13 = I23 = 0); "
                                  f"max_seconds=None integrates anyway; {group}")
 
@@ -367,12 +353,11 @@ def _odd_integer_p(I11, I22, I13, I23) -> int:
     derivations/sections/residue.py) -- or, by the symmetry eq:lina (I11 <-> I22, I13 <-> I23, certified
     by derivations/sections/kovalevskaya.py), when I23 = 0 and p^2 = I11 (I22 - I11)/I13^2 is; else 0.
     Floats are taken as the binary numbers they are; 0 when an entry is not exactly rational."""
-    from fractions import Fraction
     from math import isqrt
 
     try:
-        a, b, c, e = (Fraction(str(x)) if isinstance(x, str) else Fraction(x) for x in (I11, I22, I13, I23))
-    except (TypeError, ValueError):
+        a, b, c, e = (rational(n, x) for n, x in zip(("I11", "I22", "I13", "I23"), (I11, I22, I13, I23)))
+    except ValueError:
         return 0
     if e == 0 and c != 0:
         a, b, c, e = b, a, e, c          # eq:lina

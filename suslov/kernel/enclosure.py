@@ -57,11 +57,11 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from fractions import Fraction
 
 from flint import acb, arb, arb_mat, arb_series, ctx
 
 from .display import Ball
+from .validate import rational
 
 __all__ = ["AngleEnclosure", "EnclosureTooCostly", "DIGITS_RANGE", "MAX_SECONDS", "to_arb", "ss_angle_enclosure"]
 
@@ -90,30 +90,19 @@ class AngleEnclosure:
 
 
 def to_arb(name: str, value) -> arb:
-    """An exact ball for an int, Fraction or decimal string; a float is taken as the binary number it is.
+    """A ball for a number: exact input (an int or NumPy integer, a Fraction, a decimal or ``a/b`` string, an mpf)
+    as one quotient rounded at the working precision, its size checked first (``MAX_ENTRY_BITS`` of
+    :mod:`suslov.kernel.validate`: ``"1e100000000"`` is refused before any integer is built); a float or NumPy
+    floating scalar as the binary number it is; an arb as it is, when finite.
 
-    Anything else (complex, None, a list, a bool) is a ``ValueError`` naming the field, like every input
-    error of the public functions."""
+    Anything else (complex, None, a list, a bool, a NaN or infinite ball) is a ``ValueError`` naming the field,
+    like every input error of the public functions."""
     if isinstance(value, arb):
+        if not value.is_finite():
+            raise ValueError(f"{name}={value}: must be finite")
         return value
-    if isinstance(value, bool):
-        raise ValueError(f"{name}={value!r}: a number, not a bool")
-    if isinstance(value, int):
-        return arb(value)
-    if isinstance(value, Fraction):
-        return arb(value.numerator) / value.denominator
-    if isinstance(value, str):
-        try:
-            exact = Fraction(value)
-        except ValueError as error:
-            raise ValueError(f"{name}={value!r}: not a decimal or rational number") from error
-        return arb(exact.numerator) / exact.denominator
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            raise ValueError(f"{name}={value!r}: must be finite")
-        exact = Fraction(value)
-        return arb(exact.numerator) / exact.denominator
-    raise ValueError(f"{name}={value!r}: expected a real int, Fraction, decimal string, float or arb")
+    exact = rational(name, value, accepted="a real int, Fraction, decimal or 'a/b' string, float or arb")
+    return arb(exact.numerator) / exact.denominator
 
 
 def _norm_upper(values) -> arb:

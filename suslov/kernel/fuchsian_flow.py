@@ -42,6 +42,7 @@ __all__ = ["SINGULAR_POINTS", "cross_matrix", "residues", "transfer", "path_tran
            "guard_digits"]
 
 SINGULAR_POINTS = (acb(0), acb(0, 1), acb(0, -1))
+GUARD_CAP = 10**15   # guard_digits beyond this is reported as this: far beyond any working precision anyway
 
 
 def cross_matrix(w) -> acb_mat:
@@ -165,6 +166,8 @@ def guard_digits(R: list) -> int:
       ``2^M`` at ``eta/rho = 1/2``, while the sum is much smaller: ``M log10 2`` digits per step,
       measured 0.36 M + 7 digits over a whole loop (M from 18 to 176); the 64 extra bits of
       :func:`working_precision` (19 digits) cover the constant.
+
+    At most ``GUARD_CAP`` (a body within 1e-150 of the equilibrium needs some 1e150 digits: nothing runs).
     """
     M = sum(_norm_upper(r) for r in R)
     largest = 0.0
@@ -172,7 +175,9 @@ def guard_digits(R: list) -> int:
         w1, w2, w3 = -r[1, 2], r[0, 2], -r[0, 1]
         root = (w1 * w1 + w2 * w2 + w3 * w3).sqrt()
         largest = max(largest, float(abs(root.real).upper()))
-    return math.ceil(0.4 * M + 2 * math.pi * largest / math.log(10))
+    guard = 0.4 * M + 2 * math.pi * largest / math.log(10)
+    # |omega| ~ 1e300 (an entry I13 ~ 1e-300) or beyond float64 (largest = inf): capped, never an OverflowError
+    return math.ceil(guard) if math.isfinite(guard) and guard < GUARD_CAP else GUARD_CAP
 
 
 def working_precision(digits: int) -> int:

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from math import isqrt
 
-from suslov.kernel.validate import rational
+from suslov.kernel.validate import rational, shown
 
 __all__ = ["GaloisGroup", "exact_body", "exact_invariants", "galois_group"]
 
@@ -62,11 +62,12 @@ class GaloisGroup:
 
 
 def exact_body(I11, I22, I13, I23) -> tuple:
-    """The four entries as Fractions, validated: I11, I22 > 0, not I13 = I23 = 0 (ValueError naming the field)."""
+    """The four entries as Fractions, validated: each at most ``MAX_ENTRY_BITS`` (:func:`suslov.kernel.validate.rational`,
+    strings measured before conversion), I11, I22 > 0, not I13 = I23 = 0 (ValueError naming the field)."""
     values = tuple(rational(n, x) for n, x in zip(NAMES, (I11, I22, I13, I23)))
     for name, x in zip(NAMES[:2], values[:2]):
         if x <= 0:
-            raise ValueError(f"{name}={x}: must be positive (a principal moment of the paper's frame)")
+            raise ValueError(f"{name}={shown(x)}: must be positive (a principal moment of the paper's frame)")
     if values[2] == 0 and values[3] == 0:
         raise ValueError("I13=0 and I23=0: the constraint axis is a principal axis; every motion is an equilibrium "
                          "(no Poisson equations with omega = u tanh t + v sech t)")

@@ -60,6 +60,7 @@ from dataclasses import dataclass, field
 from flint import acb, acb_mat, arb, ctx
 
 from .fuchsian_flow import (
+    GUARD_CAP,
     circle,
     guard_digits,
     path_transfer,
@@ -141,7 +142,9 @@ def compute_monodromy(u, v, digits: int = 30, guard: int | None = None, with_inf
         exponents = {name: (acb(0), _exponent(r), -_exponent(r))
                      for name, r in (("x=0", R[0]), ("x=i", R[1]), ("x=-i", R[2]), ("x=oo", infinity))}
         if digits + guard > MAX_WORKING_DIGITS:
-            claim = (f"the loops need about {digits + guard} working digits ({digits} asked, {guard} lost to the size "
+            need = f"about {digits + guard}" if guard < GUARD_CAP else f"more than {GUARD_CAP:.0e}"
+            lost = f"{guard}" if guard < GUARD_CAP else f"more than {GUARD_CAP:.0e}"
+            claim = (f"the loops need {need} working digits ({digits} asked, {lost} lost to the size "
                      f"of |omega| near the equilibrium I13 = I23 = 0); beyond the limit {MAX_WORKING_DIGITS}: "
                      "not integrated")
             return Monodromy({}, exponents, digits=digits, guard=guard, certificates=[(claim, "unknown", "")])

@@ -145,7 +145,8 @@ def _one_d(core, sigma, t: np.ndarray, p: int, d: float) -> np.ndarray:
     values = trig_series.evaluate(T, S, _series_matrix(core, p, d))  # rows: gamma^(1) (3), Re V (3), Im V (3)
     with np.errstate(over="ignore", invalid="ignore"):   # p t/d beyond float64: careful_phase below
         cphi, sphi = phase.phase_cos_sin(p, d, t)
-        far = np.abs(p * t / d) >= phase.PHASE_LIMIT
+        # also where the split of p/d overflowed (d = 1e-300: p/d ~ 3e300 gave NaN even at t = 0)
+        far = (np.abs(p * t / d) >= phase.PHASE_LIMIT) | ~np.isfinite(cphi) | ~np.isfinite(sphi)
     if far.any():
         cphi[far], sphi[far] = careful_phase(p, d, t[far])
     out = np.empty((t.size, 3, 3))

@@ -77,7 +77,7 @@ class Body:
 
     def limit_axis(self) -> np.ndarray:
         """Unit vector ``u/|u|`` (paper frame): omega -> -lam u at t -> -oo and +lam u at +oo."""
-        return np.array([*self.u / np.linalg.norm(self.u), 0.0])
+        return np.array([*self.u / np.hypot(*self.u), 0.0])   # hypot: no underflow of |u|^2 (|u| = 2e-300)
 
     def describe(self) -> str:
         if self.special:
@@ -106,7 +106,7 @@ def make_body(tensor=None, p=None, d=None, energy=None, tol=1e-9, exact=None) ->
             raise ValueError(f"p={p!r}: must be finite and > 0")
         if not (math.isfinite(d) and d > 0):
             raise ValueError(f"d={d!r}: must be finite and > 0")
-        tensor = tensor_from_pd(p, d)
+        return _pd_body(float(p), float(d), energy, exact)
     tensor = np.asarray(tensor, dtype=float)
     R, (I11, I22, I13, I23) = gf.canonical_frame(tensor)
     size = max(abs(I11), abs(I22), abs(I13), abs(I23))
@@ -132,3 +132,44 @@ def make_body(tensor=None, p=None, d=None, energy=None, tol=1e-9, exact=None) ->
             raise ValueError(f"energy={energy!r}: must be finite and > 0")
         body = Body(R, tensor, body.entries, special, p_val, d_val, u, v, math.sqrt(energy / body.energy()), exact)
     return body
+
+
+def _pd_body(p: float, d: float, energy, exact) -> Body:
+    """The body of the case I13 = 0 from p and d directly, in the paper's frame (the frame of
+    :func:`tensor_from_pd`: I12 = 0, I11 = 1 + d^2 >= I22 = 1, I13 = 0, I23 = -d/p < 0).
+
+    Not through the float tensor and :func:`suslov.kernel.frames.canonical_frame` (issue 44): there
+    ``I23 = -d/p`` fell below its relative tolerance for p >= 1e12 d (p = 1e300 or d = 1e-300 were called the
+    equilibrium I13 = I23 = 0, whose scattering angle the closed form gives as pi), and ``1 + d^2`` or
+    ``d^2/p^2`` overflowed (d = 1e300, p = 1e-300: "NaN or inf").  omega = lam (u tanh + v sech) with
+    ``u = (p/d, 0)``, ``v = (0, -(p/d) sqrt(1 + d^2))`` (eq:o12 for I13 = 0) needs only p/d and |v| in float64;
+    ValueError naming p and d when they are not.  The tensor is the representative ``tensor_from_pd`` (entries
+    beyond float64 are inf there; the exact effects use the numbers as written, ``exact``).
+    """
+    a = p / d
+    speed = p * math.hypot(1.0, 1.0 / d) if d >= 1.0 else a * math.hypot(d, 1.0)   # |v| = (p/d) sqrt(1 + d^2)
+    for name, x in (("p/d", a), ("|v| = (p/d) sqrt(1 + d^2)", speed)):
+        if not (math.isfinite(x) and x >= 2.2250738585072014e-308):
+            raise ValueError(f"p={p!r}, d={d!r}: {name} of omega = lam (u tanh(lam t) + v sech(lam t)) is beyond "
+                             "float64's range (1e-308 to 1e308): a scene's float64 numerics cannot represent this "
+                             "body; suslov.validated (scattering_angle_enclosure, galois_group) and the module's _mp "
+                             "and _ball routes take its exact entries (I11, I22, I13, I23) = (1 + d^2, 1, 0, -d/p)")
+    with np.errstate(over="ignore", under="ignore"):
+        tensor = tensor_from_pd(p, d)
+    u, v = np.array([a, 0.0]), np.array([0.0, -speed])
+    # det(tensor_from_pd) = 1 + d^2: the entries of det I = 1 (as canonical_frame scales them), through logarithms;
+    # informative only for this case (the numerics use p, d, u, v): I11 = (1 + d^2)^(2/3) is inf beyond d ~ 1e231
+    log_det = 2.0 * math.log(d) + math.log1p(d ** -2.0) if d > 1.0 else math.log1p(d * d)
+    with np.errstate(over="ignore", under="ignore"):
+        scale = float(np.exp(-log_det / 3.0))
+        entries = (float(np.exp(2.0 * log_det / 3.0)), scale, 0.0, float(-(d / p) * np.float64(scale)))
+    rate = 1.0
+    if energy is not None:
+        if not (math.isfinite(energy) and energy > 0):
+            raise ValueError(f"energy={energy!r}: must be finite and > 0")
+        # the energy of tensor_from_pd at rate 1 is |v|^2/2 (I22 = 1; at t = 0 omega = v), so lam = sqrt(2 E)/|v|
+        rate = math.sqrt(2.0 * energy) / speed
+        if not (math.isfinite(rate) and rate > 0):
+            raise ValueError(f"energy={energy!r} with p={p!r}, d={d!r}: the rate sqrt(2 energy)/|v| = {rate!r} is beyond "
+                             "float64's range")
+    return Body(np.eye(3), tensor, entries, True, p, d, u, v, rate, exact)

@@ -28,6 +28,9 @@ from dataclasses import dataclass
 from fractions import Fraction
 from math import isqrt
 
+from suslov.kernel.validate import rational
+from suslov.kernel.validate import shown as validate_shown
+
 __all__ = ["ExactBody", "ball_entries", "enclosure", "exact_number", "from_pd", "from_tensor", "galois_group",
            "of_scene_body"]
 
@@ -35,23 +38,19 @@ __all__ = ["ExactBody", "ball_entries", "enclosure", "exact_number", "from_pd", 
 def exact_number(name: str, value) -> tuple[Fraction, str]:
     """(the exact value, how it was read) of a number as written.
 
-    ints are integers, Fractions themselves, strings decimals or ``a/b`` (read exactly), floats their
+    ints are integers, Fractions themselves, strings decimals or ``a/b`` (read exactly; each at most
+    ``MAX_ENTRY_BITS`` in numerator and denominator, :mod:`suslov.kernel.validate`), floats their
     binary value: "float64 (exact)" when the shortest decimal that reads back as that float is its binary
     value (0.5, 3.0), else "float64" (0.7 is 3152519739159347/2^52, not 7/10).  ValueError for anything else.
     """
     if isinstance(value, bool):
         raise ValueError(f"{name}={value!r}: a number, not a bool")  # noqa: TRY004 (input errors are ValueError here)
     if isinstance(value, numbers.Integral):
-        return Fraction(int(value)), "integer"
+        return rational(name, int(value)), "integer"
     if isinstance(value, Fraction):
-        return value, "rational"
-    if isinstance(value, str):
-        text = value.strip()
-        try:
-            number = Fraction(text)
-        except (ValueError, ZeroDivisionError):
-            raise ValueError(f"{name}={value!r}: not a decimal or rational number (e.g. \"0.7\" or \"7/10\")") from None
-        return number, ("rational string" if "/" in text else "decimal string")
+        return rational(name, value), "rational"
+    if isinstance(value, str):   # read exactly, its size checked before conversion (MAX_ENTRY_BITS)
+        return rational(name, value), ("rational string" if "/" in value else "decimal string")
     if isinstance(value, numbers.Real):
         x = float(value)
         if not math.isfinite(x):
@@ -75,6 +74,8 @@ def shown(name: str, value) -> str:
 
 
 def _text(q: Fraction) -> str:
+    if max(q.numerator.bit_length(), q.denominator.bit_length()) > 14_000:   # str() refuses ints over 4300 digits
+        return validate_shown(q)
     return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
 
 

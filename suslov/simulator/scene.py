@@ -66,6 +66,7 @@ from pathlib import Path
 
 import numpy as np
 
+from suslov.kernel.validate import shown
 from suslov.loader import gf
 from suslov.simulator.exact import exact_number
 from suslov.simulator.scene_errors import SceneError
@@ -119,13 +120,21 @@ class Scene:
         return self.body.get("kind") == "sleigh"
 
     def times(self) -> np.ndarray:
-        return np.linspace(self.time[0], self.time[1], self.samples)
+        t0, t1 = self.time
+        if math.isfinite(t1 - t0):
+            return np.linspace(t0, t1, self.samples)
+        # a window wider than float64 ([-1e308, 1e308]: t1 - t0 overflows, linspace gave NaN): weighted ends
+        weights = np.linspace(0.0, 1.0, self.samples)
+        return (1.0 - weights) * t0 + weights * t1
 
 
 def _number(path, name, value, *, positive=False, allow_zero=True):
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise SceneError(path, name, f"{value!r} is not a number")
-    value = float(value)
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise SceneError(path, name, f"{shown(value)} is not a number")
+    try:
+        value = float(value)
+    except OverflowError:   # a Python int beyond float64 (10**400 in a dict scene)
+        raise SceneError(path, name, f"{shown(value)} is beyond float64's range (|x| <= 1.8e308)") from None
     if not math.isfinite(value):
         raise SceneError(path, name, f"{value!r} is not finite")
     if positive and (value < 0 or (value == 0 and not allow_zero)):
@@ -143,11 +152,34 @@ def _body_number(path, name, value, *, positive=False):
         except ValueError as exc:
             raise SceneError(path, name, str(exc).split(": ", 1)[-1]) from None
         except OverflowError:
-            raise SceneError(path, name, f"{value!r} is beyond float64's range") from None
+            raise SceneError(path, name, f"{shown(value)} is beyond float64's range (|x| <= 1.8e308)") from None
         if positive and exact <= 0:
             raise SceneError(path, name, f"{value!r} must be > 0")
         return number
     return _number(path, name, value, positive=positive, allow_zero=not positive)
+
+
+def _drift_in_float64(path, body, energy):
+    """integral_drift evaluates F1 = <I omega, omega>/2 in float64 with the representative tensor of (p, d)
+    (:func:`suslov.simulator.body.tensor_from_pd`: I22 = 1, I11 = 1 + d^2, I23 = -d/p, I33 = 1 + d^2/p^2): refused
+    by name when that tensor or F1 is beyond float64 (d = 1e300, p = 1e-300, or p = 1e300 at rate 1), which
+    otherwise came out as NaN.  The other effects of such a body run (the closed forms take p and d)."""
+    from suslov.simulator.body import tensor_from_pd
+
+    p, d = body["p"], body["d"]
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+        tensor = tensor_from_pd(p, d)
+        speed = p * math.hypot(1.0, 1.0 / d) if d >= 1.0 else (p / d) * math.hypot(d, 1.0)   # |omega(0)|, rate 1
+        f1 = energy if energy is not None else 0.5 * speed * speed
+    if not np.all(np.isfinite(tensor)):
+        raise SceneError(path, "effects.compute", f"integral_drift: F1 = <I omega, omega>/2 is evaluated in float64 with "
+                         f"the representative tensor of p = {p!r}, d = {d!r} (I11 = 1 + d^2, I23 = -d/p, I33 = 1 + "
+                         "d^2/p^2), whose entries are beyond float64's range here; the other effects run for this "
+                         "body")
+    if not math.isfinite(f1):
+        raise SceneError(path, "effects.compute", f"integral_drift: F1 = |omega(0)|^2/2 at rate 1, |omega(0)| = "
+                         f"{speed:.3g}, is beyond float64's range for p = {p!r}, d = {d!r}; give motion.energy (the "
+                         "rate follows from it) or leave out integral_drift")
 
 
 def _table(path, data, name, allowed):
@@ -332,6 +364,8 @@ def parse_scene(data: dict, path=None) -> Scene:
     compute, figures, formats = _effects(path, _table(path, data, "effects", ("compute", "figures", "figures_format")),
                                          body, sweep)
     rtol, atol, method = _numerics(path, _table(path, data, "numerics", ("rtol", "atol", "method")))
+    if body and "p" in body and "integral_drift" in compute:
+        _drift_in_float64(path, body, energy)
     default_name = "scene" if path.name == "<dict>" else path.stem
     return Scene(path, data.get("name", default_name), data.get("description", ""), body or {"kind": "sweep"}, window,
                  samples, energy, initial, speed, list(dict.fromkeys(compute)), list(dict.fromkeys(figures)), rtol,

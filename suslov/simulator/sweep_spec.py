@@ -40,6 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
+from suslov.kernel.validate import rational, shown
 from suslov.simulator.scene_errors import SceneError
 
 MAX_POINTS = 10_000_000
@@ -79,11 +80,15 @@ def _error(path, field_name, reason):
 
 
 def _finite(path, name, value):
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise _error(path, name, f"{value!r} is not a number")
-    if not math.isfinite(value):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise _error(path, name, f"{shown(value)} is not a number")
+    try:
+        number = float(value)
+    except OverflowError:   # a Python int beyond float64 (10**400)
+        raise _error(path, name, f"{shown(value)} is beyond float64's range (|x| <= 1.8e308)") from None
+    if not math.isfinite(number):
         raise _error(path, name, f"{value!r} is not finite")
-    return float(value)
+    return number
 
 
 def _count(path, name, table) -> int:
@@ -114,6 +119,9 @@ def _range(path, name, table) -> np.ndarray:
     if "seed" in table and kind != "random":
         raise _error(path, f"{name}.seed", "only a random range takes a seed")
     if kind == "linear":
+        if not math.isfinite(b - a):   # [-1e308, 1e308]: b - a overflows, linspace gave NaN and inf
+            weights = np.linspace(0.0, 1.0, count)
+            return (1.0 - weights) * a + weights * b
         return np.linspace(a, b, count)
     if kind == "log":
         if not (a > 0 and b > 0):
@@ -124,6 +132,9 @@ def _range(path, name, table) -> np.ndarray:
         raise _error(path, f"{name}.seed", f"{seed!r}: must be a non-negative integer")
     if not a < b:
         raise _error(path, f"{name}.random", f"[{a}, {b}]: need start < stop")
+    if not math.isfinite(b - a):   # numpy's uniform refuses a range wider than float64 (OverflowError)
+        weights = np.random.default_rng(seed).uniform(0.0, 1.0, count)
+        return (1.0 - weights) * a + weights * b
     return np.random.default_rng(seed).uniform(a, b, count)
 
 
@@ -131,13 +142,16 @@ def _written(path, name, value):
     """(float, the string as written or None) of one listed value: a number, or a decimal / "a/b" string."""
     if not isinstance(value, str):
         return _finite(path, name, value), None
+    try:   # read exactly, its size checked before conversion (MAX_ENTRY_BITS of suslov.kernel.validate)
+        exact = rational(name, value)
+    except ValueError as error:
+        reason = str(error).split(": ", 1)[-1]
+        raise _error(path, name, f"{shown(value)} is not a number (a decimal or \"a/b\" string is)"
+                     if "not a decimal" in reason else f"{shown(value)}: {reason}") from None
     try:
-        exact = Fraction(value.strip())
         number = float(exact)
-    except (ValueError, ZeroDivisionError):
-        raise _error(path, name, f"{value!r} is not a number (a decimal or \"a/b\" string is)") from None
     except OverflowError:
-        raise _error(path, name, f"{value!r} is beyond float64's range") from None
+        raise _error(path, name, f"{shown(value)} is beyond float64's range") from None
     return number, (value.strip() if Fraction(number) != exact else None)
 
 
@@ -201,12 +215,12 @@ def read_bodies_csv(path: Path, scene_path, keep_written: bool = False) -> tuple
                 try:
                     x = float(cell)
                 except ValueError:
-                    raise _error(path, f"row {number}, column {column}", f"{cell!r} is not a number") from None
+                    raise _error(path, f"row {number}, column {column}", f"{shown(cell)} is not a number") from None
                 if not math.isfinite(x):
-                    raise _error(path, f"row {number}, column {column}", f"{cell!r} is not finite")
+                    raise _error(path, f"row {number}, column {column}", f"{shown(cell)} is not finite")
                 values.append(x)
                 if keep_written:
-                    text = None if column == "energy" or Fraction(cell) == Fraction(x) else cell
+                    text = None if column == "energy" or _exact_cell(path, number, column, cell) == Fraction(x) else cell
                     inexact = inexact or text is not None
                     texts.append(text)
             rows.append(values)
@@ -217,6 +231,16 @@ def read_bodies_csv(path: Path, scene_path, keep_written: bool = False) -> tuple
     if not rows:
         raise _error(path, "rows", "no data rows: a sweep needs at least one point")
     return columns, np.array(rows, dtype=float), (_object_array(written) if inexact else None)
+
+
+def _exact_cell(path, number: int, column: str, cell: str) -> Fraction:
+    """A cell read exactly, its size checked before conversion (``MAX_ENTRY_BITS`` of :mod:`suslov.kernel.validate`:
+    a cell "1e-100000000" is a float 0.0 but would be a 100-million-digit denominator)."""
+    where = f"row {number}, column {column}"
+    try:
+        return rational(where, cell)
+    except ValueError as error:
+        raise _error(path, where, str(error).split(": ", 1)[-1]) from None
 
 
 def _object_array(rows: list) -> np.ndarray:

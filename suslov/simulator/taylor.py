@@ -55,6 +55,7 @@ COMPILE_SECONDS: dict = {}   # (k, tol) -> seconds taken by the JIT compilation 
 LAM_T_MAX = 700.0            # cosh(lam t) overflows at |lam t| = 710
 CHECK_CAP = 0.9              # the check run's step cap, in units of the main run's cap
 TRANSITION_CAP = 0.25        # taylor_angle's step cap, in units of 1/lam (see the module docstring)
+ANGLE_STEP_UNITS = 100 * integrate.MAX_STEPS   # taylor_angle's bound, in steps of integrate.max_step_for
 
 
 @functools.lru_cache(maxsize=16)
@@ -240,7 +241,17 @@ def taylor_angle(body, tol=1e-12, horizon=40.0):
     tol, tight = _tolerances(tol)
     if not (0 < horizon <= LAM_T_MAX):
         raise ValueError(f"horizon={horizon!r}: must be in (0, {LAM_T_MAX:g}]")
-    (t_start, g0), t_end, h = _ss_start(body), horizon / body.rate, TRANSITION_CAP / body.rate
+    t_end, h = horizon / body.rate, TRANSITION_CAP / body.rate
+    # bounded before any work (issue 44): |omega| ~ 1e300 (p = 1e300) ended in "err_nf_state at t = nan"; heyoka
+    # takes about 0.03 steps per max_step_for step (measured, p = 10 to 1e4): the bound is some 1.5e7 steps,
+    # reached at |omega| ~ 3e6 (p ~ 1e6 at d = 0.5), about 10 s
+    scale = (t_end - integrate.SERIES_START / body.rate) / integrate.max_step_for(body)
+    if not scale <= ANGLE_STEP_UNITS:
+        raise RuntimeError(f"the ss solution integrated to lam t = {horizon:g} needs some {0.03 * scale:.3g} Taylor "
+                           f"steps (|omega| up to {body.rate * (math.hypot(*body.u) + math.hypot(*body.v)):.3g}; "
+                           f"the limit is {0.03 * ANGLE_STEP_UNITS:.3g}): not integrated; the closed form "
+                           "(scattering_angle) gives the angle of every body")
+    t_start, g0 = _ss_start(body)
     ends, steps = [], 0
     for ta, cap in ((integrator(1, tol), h), (integrator(1, tight), CHECK_CAP * h)):
         _reset(ta, body, t_start, g0)
