@@ -1,9 +1,10 @@
-"""Shared fixtures: one certified build per test session (it takes about a second).
+"""Shared fixtures: one certified build in this process and one by the command line per test session
+(about ten seconds each, cold), and the ``slow`` marker of the quick loop (``pytest -m "not slow"``).
 
 The build's certificate cache is off for the whole session (``SUSLOV_NO_CACHE``, inherited by the
 ``build_formulas.py`` subprocesses): tests that perturb a derivation at run time must not be
 answered from a cache keyed by unchanged sources.  tests/test_cache.py turns it on in its own
-temporary cache directory.
+temporary cache directory, and :func:`cli_build` in its own, for the read-only ``--check`` tests.
 """
 import os
 import shutil
@@ -19,6 +20,24 @@ from derivations.core.options import BuildOptions
 from derivations.output.pipeline import derive
 
 ROOT = Path(__file__).resolve().parents[1]
+
+
+SLOW_FIXTURES = {"default_build", "cli_build", "wheel", "venv"}   # a whole build, or a package installed
+
+
+def _listed_slow() -> set[str]:
+    listed = (ROOT / "tests" / "slow_tests.txt").read_text(encoding="utf-8").splitlines()
+    return {line.strip() for line in listed if line.strip() and not line.startswith("#")}
+
+
+def pytest_collection_modifyitems(config, items):
+    """Mark ``slow`` what ``tests/slow_tests.txt`` lists (``bench/slow_tests.py``: 0.5 s or more in a timed run)
+    and every test that needs a whole build: ``pytest -m "not slow"`` is the developer's quick loop; the
+    README's test command runs everything."""
+    listed = _listed_slow()
+    for item in items:
+        if item.nodeid in listed or SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
+            item.add_marker(pytest.mark.slow)
 
 
 @pytest.fixture(scope="session")

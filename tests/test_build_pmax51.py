@@ -21,10 +21,12 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 
 
-def test_pmax_51_builds_and_certifies_every_p(tmp_path):
+def test_pmax_51_builds_and_certifies_every_p(tmp_path, cli_build):
+    # with the per-p cache of this session's default command-line build (conftest.cli_build): the numeric
+    # checks that do not depend on pmax and the phases of p <= 15 come from it, p = 16..51 are computed here
     out = tmp_path / "pmax51"
     proc = subprocess.run([sys.executable, str(ROOT / "build_formulas.py"), "--pmax", "51", "--out", str(out)],
-                          capture_output=True, text=True, cwd=ROOT, timeout=900)
+                          capture_output=True, text=True, cwd=ROOT, timeout=900, env=cli_build[1])
     assert proc.returncode == 0, proc.stderr[-3000:]
     # the estimate is printed on each line; how close it comes to the wall time is measured in
     # bench/bench_build.py (bench/results/build.md), not asserted here: a busy machine is not a defect

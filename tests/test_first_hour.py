@@ -39,9 +39,10 @@ def git_status():
 
 
 @pytest.mark.skipif(not (ROOT / ".git").exists(), reason="needs the git checkout")
-def test_following_the_out_of_range_message_gives_p21_and_a_clean_checkout(tmp_path):
+def test_following_the_out_of_range_message_gives_p21_and_a_clean_checkout(tmp_path, cli_build):
     before = git_status()
-    env = dict(os.environ, SUSLOV_DATA_DIR=str(tmp_path / "store"))
+    # the per-p cache of this session's default build (conftest.cli_build): p > 15 computed here
+    env = dict(cli_build[1], SUSLOV_DATA_DIR=str(tmp_path / "store"))
     done = subprocess.run([sys.executable, "-c", SCRIPT], cwd=tmp_path, env=env, capture_output=True, text=True,
                           timeout=900)
     assert done.returncode == 0, done.stderr[-2000:]

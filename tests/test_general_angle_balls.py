@@ -3,8 +3,8 @@
 The default build corroborates the connection step of the closed-form scattering angle of every body
 (``derivations/sections/general_angle.py``, step 5) on the first few of the twenty seeded bodies
 (``BALL_TIERS["default"]``), so that a cold build stays in seconds; ``build_formulas.py --ball-checks full``
-runs all twenty at 100 digits.  This file runs that full set here, one body and check per test (so the
-workers of ``pytest -n`` share them), against two independent validated routes:
+runs all twenty at 100 digits.  This file runs that full set here, on two worker processes, against two
+independent validated routes:
 
 * the complex-path monodromy in x = e^t (``suslov.kernel.monodromy``), whose traces the closed form predicts;
 * the ss enclosure (``suslov.kernel.enclosure``: validated integration along the real t-axis).
@@ -29,10 +29,14 @@ def test_default_tier_is_a_prefix_of_the_full_set():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("job", JOBS, ids=[f"{kind}-{digits}-{'_'.join(body)}" for body, kind, digits, _ in JOBS])
-def test_full_ball_check(job):
-    body, kind, digits, _ = job
-    row = general_angle._run_check(job)
-    assert row["body"] == body
-    distance = row["relative_float"] if kind == "trace" else row["difference_float"]
-    assert 0 <= distance <= 10.0 ** (10 - digits), (kind, digits, body, row)
+def test_full_ball_checks():
+    """All 42 checks, on two worker processes (the suite runs in one process; the checks are independent)."""
+    from loky import get_reusable_executor
+
+    rows = list(get_reusable_executor(max_workers=2).map(general_angle._run_check, JOBS))
+    failures = []
+    for (body, kind, digits, _), row in zip(JOBS, rows):
+        distance = row["relative_float"] if kind == "trace" else row["difference_float"]
+        if row["body"] != body or not 0 <= distance <= 10.0 ** (10 - digits):
+            failures.append((kind, digits, body, row))
+    assert len(rows) == len(JOBS) and failures == []
