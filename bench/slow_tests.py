@@ -1,7 +1,7 @@
 """The tests the quick loop (``pytest -m "not slow"``) leaves out, from a timed run of the whole suite (issue 43).
 
 Reads the output of ``python -m pytest -p no:randomly --durations=0`` on standard input and prints, sorted, the
-node id of every test whose setup, call and teardown took at least ``--threshold`` seconds together; the suite's
+node id of every test whose setup, call and teardown took at least ``--threshold`` seconds (0.3) together; the suite's
 ``tests/conftest.py`` marks the ids listed in ``tests/slow_tests.txt`` as ``slow`` (CI still runs them: the
 README's test command runs everything).  Regenerate after adding costly tests:
 
@@ -31,7 +31,7 @@ def slow_ids(lines, threshold: float) -> list[str]:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--threshold", type=float, default=0.5, help="seconds (default 0.5)")
+    ap.add_argument("--threshold", type=float, default=0.3, help="seconds (default 0.3)")
     args = ap.parse_args(argv)
     ids = slow_ids(sys.stdin, args.threshold)
     if not ids:

@@ -31,7 +31,7 @@ def _listed_slow() -> set[str]:
 
 
 def pytest_collection_modifyitems(config, items):
-    """Mark ``slow`` what ``tests/slow_tests.txt`` lists (``bench/slow_tests.py``: 0.5 s or more in a timed run)
+    """Mark ``slow`` what ``tests/slow_tests.txt`` lists (``bench/slow_tests.py``: 0.3 s or more in a timed run)
     and every test that needs a whole build: ``pytest -m "not slow"`` is the developer's quick loop; the
     README's test command runs everything."""
     listed = _listed_slow()
