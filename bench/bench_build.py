@@ -209,7 +209,7 @@ def report(data: dict) -> str:
                   "After each derivation the build prints its time so far and the time left (the benchmark's "
                   "per-derivation prediction rescaled by what this machine measured so far; "
                   "`derivations/output/estimate.py`). Their sum over the measured wall time, first line and worst "
-                  "line (target: within a factor 2):", "", "| pmax | jobs | lines | first | min | max |",
+                  "line (target: within a factor 1.5 from the second line on):", "", "| pmax | jobs | lines | first | min | max |",
                   "| ---: | ---: | ---: | ---: | ---: | ---: |"]
         for r in estimated:
             e = r["estimate_over_wall"]
