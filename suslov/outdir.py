@@ -12,6 +12,14 @@ Rules
   ``certificates.json`` for the build, ``report.md`` for the simulator).  Anything else (a file, a
   user's directory, the current directory of a checkout, a path whose parent cannot be written) is
   refused with :class:`OutputRefused` *before any work*, naming the path and what is in it.
+* **Nothing lost.**  When the tool says what it wrote (``claim(..., written=...)``: the build from its
+  manifest ``SHA256SUMS``, the simulator from its ``report.md``), a previous output that also holds
+  anything else (a user's file or directory) is refused, naming those entries, before any work and
+  again just before the swap (a file put there while the run worked).  Nothing foreign is moved or
+  kept: the user moves it or chooses another path.
+* **Writable place.**  The nearest existing ancestor of the path must be a directory in which a
+  directory can be created (tried, then removed: ``/proc``, a read-only mount, or root's view of a
+  mode-0555 directory are told apart only by trying); ``~user`` must name a user.  Checked before any work.
 * **Replacement at every instant.**  The new tree is written into a staging directory beside the
   target, then exchanged with the old one in a single ``renameat2(RENAME_EXCHANGE)`` system call
   (Linux >= 3.15): at any instant, a kill leaves either the complete old or the complete new tree at
@@ -41,8 +49,8 @@ _KINDS = ("new", "old")
 _RENAME_EXCHANGE = 2
 _AT_FDCWD = -100
 
-__all__ = ["MARKER", "OutputRefused", "claim", "recover", "new_staging", "swap_in", "staged", "remove_stale",
-           "make_dir"]
+__all__ = ["MARKER", "OutputRefused", "claim", "writable_directory", "recover", "new_staging", "swap_in", "staged",
+           "remove_stale", "make_dir"]
 
 
 class OutputRefused(ValueError):
@@ -50,7 +58,11 @@ class OutputRefused(ValueError):
 
 
 def _describe(path: Path, limit: int = 5) -> str:
-    names = sorted(p.name + ("/" if p.is_dir() else "") for p in path.iterdir())
+    return _listing(list(path.iterdir()), limit)
+
+
+def _listing(entries, limit: int = 5) -> str:
+    names = sorted(p.name + ("/" if p.is_dir() else "") for p in entries)
     shown = ", ".join(names[:limit]) + (f", ... ({len(names)} entries)" if len(names) > limit else "")
     return shown
 
@@ -62,12 +74,55 @@ def _owned(path: Path, tool: str, signature: str | None) -> bool:
         return signature is not None and (path / signature).is_file()
 
 
-def claim(target, tool: str, signature: str | None = None) -> Path:
+def _absolute(target) -> Path:
+    """``target`` with ``~`` expanded, made absolute (not resolved: a symlinked output stays refused)."""
+    try:
+        return Path(os.path.abspath(Path(target).expanduser()))
+    except RuntimeError:   # pathlib: "Could not determine home directory." for ~nosuchuser (or no $HOME)
+        head = str(target).split("/", 1)[0]
+        raise OutputRefused(f"{target}: {head} is no user's home directory (no such user, or no home); "
+                            "give the path in full") from None
+
+
+def _cannot_create_in(directory: Path) -> str | None:
+    """Why nothing can be created in ``directory``, or None.  Tried with a directory made and removed at once:
+    permission bits do not tell (root passes ``os.access`` in ``/proc`` and on some read-only mounts)."""
+    if not os.access(directory, os.W_OK | os.X_OK):
+        return "read-only or not permitted"
+    probe = directory / f".suslov-probe-{os.getpid()}-{secrets.token_hex(4)}"
+    try:
+        os.mkdir(probe, 0o700)
+    except OSError as error:
+        return f"creating a directory there fails: {error.strerror}"
+    try:
+        os.rmdir(probe)
+    except OSError:
+        pass
+    return None
+
+
+def _writable_place(target, path: Path, inside: bool = False) -> None:
+    """Refuse ``path`` when its nearest existing ancestor (``path`` itself with ``inside``) is not a directory
+    one can create entries in."""
+    parent = path if inside else path.parent
+    while not parent.exists() and not parent.is_symlink():
+        parent = parent.parent
+    if not parent.is_dir():
+        raise OutputRefused(f"{target}: {parent} is not a directory")
+    why = _cannot_create_in(parent)
+    if why:
+        raise OutputRefused(f"{target}: cannot write in {parent} ({why})")
+
+
+def claim(target, tool: str, signature: str | None = None, written=None) -> Path:
     """The absolute output path, after checking that ``tool`` may replace it.
 
     Raises :class:`OutputRefused` naming the path and its contents when it is a file, a non-empty
     directory without ``tool``'s marker (or the legacy ``signature`` file), a directory that contains
-    the current working directory, or a path whose parent cannot be created or written.
+    the current working directory, or a path whose parent cannot be created or written (or whose
+    ``~user`` names no user).  ``written``, when given, is a function of a previous output's directory
+    returning the names of its entries the tool wrote (or keeps): a previous output holding any other
+    entry is refused too, naming them (the marker file is always the tool's).
 
     >>> import tempfile, pathlib
     >>> d = pathlib.Path(tempfile.mkdtemp()); (d / "thesis.txt").write_text("mine")
@@ -77,23 +132,39 @@ def claim(target, tool: str, signature: str | None = None) -> Path:
     ...
     suslov.outdir.OutputRefused: ...: a directory with other content (thesis.txt), not a previous demo output; refusing to replace it
     """
-    path = Path(os.path.abspath(Path(target).expanduser()))
+    path = _absolute(target)
     if path.exists() or path.is_symlink():
         if path.is_symlink() or not path.is_dir():
             raise OutputRefused(f"{target}: exists and is not a directory; refusing to replace it")
         if Path.cwd() == path or path in Path.cwd().parents:
             raise OutputRefused(f"{target}: is (or contains) the current directory; choose a new or empty "
                                 "directory for the output")
-        if any(path.iterdir()) and not _owned(path, tool, signature):
-            raise OutputRefused(f"{target}: a directory with other content ({_describe(path)}), not a previous "
-                                f"{tool} output; refusing to replace it")
-    parent = path.parent
-    while not parent.exists() and not parent.is_symlink():
-        parent = parent.parent
-    if not parent.is_dir():
-        raise OutputRefused(f"{target}: {parent} is not a directory")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise OutputRefused(f"{target}: cannot write in {parent} (read-only or not permitted)")
+        if any(path.iterdir()):
+            if not _owned(path, tool, signature):
+                raise OutputRefused(f"{target}: a directory with other content ({_describe(path)}), not a previous "
+                                    f"{tool} output; refusing to replace it")
+            if written is not None:
+                own = set(written(path)) | {MARKER}
+                foreign = [entry for entry in path.iterdir() if entry.name not in own]
+                if foreign:
+                    raise OutputRefused(f"{target}: a previous {tool} output that also holds what {tool} did not "
+                                        f"write ({_listing(foreign, 10)}); refusing to replace it (that would delete "
+                                        "them): move them elsewhere or choose another output directory")
+    _writable_place(target, path)
+    return path
+
+
+def writable_directory(target) -> Path:
+    """The absolute path of a directory that files are written into (not replaced whole: the build's
+    ``--pdf OUTDIR``), after checking that it is one or can be created: :class:`OutputRefused` naming the
+    path when it is a file, lies under a file, cannot be written or has a ``~user`` that names no user."""
+    path = _absolute(target)
+    if path.exists() or path.is_symlink():
+        if not path.is_dir():
+            raise OutputRefused(f"{target}: exists and is not a directory")
+        _writable_place(target, path, inside=True)
+    else:
+        _writable_place(target, path)
     return path
 
 
@@ -251,16 +322,18 @@ def swap_in(staging: Path, target) -> None:
 
 
 @contextmanager
-def staged(out, tool: str, signature: str | None = None):
+def staged(out, tool: str, signature: str | None = None, written=None):
     """Yield a staging directory; on success it replaces ``out``, on any exception it is removed.
 
-    ``out`` is checked with :func:`claim` first, so a refused path fails before any work.
+    ``out`` is checked with :func:`claim` first, so a refused path fails before any work, and again before
+    the swap (files a user put into the previous output meanwhile are not lost: :class:`OutputRefused`).
     """
-    out = claim(out, tool, signature)
+    out = claim(out, tool, signature, written)
     make_dir(out.parent)
     staging = new_staging(out, tool)
     try:
         yield staging
+        claim(out, tool, signature, written)
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise

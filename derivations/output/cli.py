@@ -44,7 +44,7 @@ from suslov.executor import (
     worker_limit,
 )
 from suslov.interrupts import listen_for_interrupts
-from suslov.outdir import OutputRefused
+from suslov.outdir import OutputRefused, writable_directory
 
 
 def _pmax(text: str) -> int:
@@ -257,6 +257,12 @@ def main(argv: list[str] | None = None) -> int:
             target = claim_output(target)
         except OutputRefused as exc:
             print(f"build_formulas.py: --out {exc}; nothing was done", file=sys.stderr)
+            return 2
+    if args.pdf is not None:
+        try:   # also before any work: --pdf naming a file (or an unwritable place) would fail only after the build
+            args.pdf = writable_directory(args.pdf)
+        except OutputRefused as exc:
+            print(f"build_formulas.py: --pdf {exc}; nothing was done", file=sys.stderr)
             return 2
     key = build_key(options, None) if use_cache and not args.only else None
     if key is not None:

@@ -275,8 +275,29 @@ BUILD_SIGNATURE = "certificates.json"   # recognises build outputs written befor
 
 def claim_output(target: Path) -> Path:
     """``target`` as an absolute path the build may replace (:func:`suslov.outdir.claim`: refuses a file,
-    a foreign directory or an unwritable place with :class:`suslov.outdir.OutputRefused`)."""
-    return outdir.claim(target, BUILD_TOOL, BUILD_SIGNATURE)
+    a foreign directory or an unwritable place with :class:`suslov.outdir.OutputRefused`).
+
+    A previous build output is replaced only when it holds nothing but what the build wrote: the files its
+    manifest ``SHA256SUMS`` lists (a tree without a readable one: the names the build writes), the manifest,
+    the volatile files, the TeX by-products a rebuild keeps (:func:`swap_in`) and a ``__pycache__/`` of
+    ``*.pyc`` only (Python's, remade on import).  Any other file or directory is the user's: refused, named.
+    """
+    def written(directory: Path) -> set[str]:
+        try:   # leniently: a --only build's manifest lacks the module that manifest.read requires
+            lines = (directory / manifest.MANIFEST).read_text(encoding="utf-8").splitlines()
+            names = {line.partition("  ")[2] for line in lines if "  " in line} - {""}
+        except (OSError, UnicodeDecodeError):
+            names = {filename for _, filename, _ in OUTPUTS} | {BUILD_SIGNATURE}
+        names |= {manifest.MANIFEST, *VOLATILE}
+        for entry in directory.iterdir():
+            if entry.is_file() and is_byproduct(entry.name):
+                names.add(entry.name)
+            elif (entry.name == "__pycache__" and entry.is_dir() and not entry.is_symlink()
+                  and all(f.is_file() and not f.is_symlink() and f.suffix == ".pyc" for f in entry.iterdir())):
+                names.add(entry.name)
+        return names
+
+    return outdir.claim(target, BUILD_TOOL, BUILD_SIGNATURE, written)
 
 
 def write_atomically(build: Build, target: Path) -> None:
@@ -302,6 +323,7 @@ def write_atomically(build: Build, target: Path) -> None:
                 raise RuntimeError("the emitted module changed after its round trip: the certified text is not the "
                                    "one written")
         write_manifest(staging)
+        claim_output(target)   # again: a file a user put into the previous output meanwhile is not lost
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
@@ -318,6 +340,7 @@ def install_tree(source: Path, target: Path) -> None:
             if item.is_file() and item.name not in ("manifest.json", outdir.MARKER):
                 shutil.copyfile(item, staging / item.name)
         write_manifest(staging)
+        claim_output(target)   # again: a file a user put into the previous output meanwhile is not lost
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
