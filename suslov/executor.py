@@ -225,11 +225,34 @@ def run_chunks(work: Callable, chunks: list, keys: list[str], *, store: ChunkSto
 
 def wait_first(futures) -> set:
     """The futures of ``futures`` that are done, waiting for at least one; returns to the interpreter every
-    ``POLL`` seconds so that Ctrl-C is handled even when the kernel delivered it to a helper thread."""
+    ``POLL`` seconds so that Ctrl-C is handled even when the kernel delivered it to a helper thread.
+
+    Ctrl-C is never raised *inside* ``concurrent.futures.wait``: that function acquires every future's lock
+    in a Python loop, and a KeyboardInterrupt between two acquisitions left locks held for ever, so the
+    pool's manager thread, setting the futures' exceptions at shutdown, waited on them and the interrupted
+    sweep never exited (seen once in a few runs of tests/test_interrupt.py).  While waiting, SIGINT only
+    sets a flag; the program's own handler runs right after."""
     while True:
-        done, _ = wait(set(futures), timeout=POLL, return_when=FIRST_COMPLETED)
+        done = _wait_deferring_sigint(set(futures))
         if done:
             return done
+
+
+def _wait_deferring_sigint(futures: set) -> set:
+    if threading.current_thread() is not threading.main_thread():
+        return wait(futures, timeout=POLL, return_when=FIRST_COMPLETED)[0]
+    caught = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(frame))
+    try:
+        done = wait(futures, timeout=POLL, return_when=FIRST_COMPLETED)[0]
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if caught:
+        if callable(previous):
+            previous(signal.SIGINT, caught[0])
+        elif previous == signal.SIG_DFL:
+            raise KeyboardInterrupt
+    return done
 
 
 class Ahead:
