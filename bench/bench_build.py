@@ -23,6 +23,7 @@ baseline's builds; pmax 201 is built on all cores only); writes ``bench/results/
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import os
@@ -227,11 +228,19 @@ def report(data: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def run_baseline(revision: str, pmaxes: list, tmp: Path) -> list:
-    """Cold all-cores builds of ``revision`` (a git worktree in ``tmp``) in the same run as the others."""
-    tree = tmp / "baseline"
+@contextlib.contextmanager
+def worktree(revision: str, tree: Path):
+    """``revision`` checked out at ``tree`` (a detached git worktree) for the ``with`` block, then removed."""
     subprocess.run(["git", "worktree", "add", "--detach", "-q", str(tree), revision], cwd=ROOT, check=True)
     try:
+        yield tree
+    finally:
+        subprocess.run(["git", "worktree", "remove", "--force", str(tree)], cwd=ROOT, check=False)
+
+
+def run_baseline(revision: str, pmaxes: list, tmp: Path) -> list:
+    """Cold all-cores builds of ``revision`` (a git worktree in ``tmp``) in the same run as the others."""
+    with worktree(revision, tmp / "baseline") as tree:
         runs = []
         for pmax in pmaxes:
             try:
@@ -243,8 +252,6 @@ def run_baseline(revision: str, pmaxes: list, tmp: Path) -> list:
                 continue
             print(f"baseline {revision}, pmax {pmax}, all cores: {runs[-1]['wall_seconds']:.1f} s", file=sys.stderr)
         return runs
-    finally:
-        subprocess.run(["git", "worktree", "remove", "--force", str(tree)], cwd=ROOT, check=False)
 
 
 def main(argv=None):
@@ -260,17 +267,11 @@ def main(argv=None):
     args = ap.parse_args(argv)
     runs, warm, paired = [], {}, None
     with tempfile.TemporaryDirectory() as tmp:
-        if args.repeat:
-            tree = None
-            if args.baseline:
-                tree = Path(tmp) / "paired-baseline"
-                subprocess.run(["git", "worktree", "add", "--detach", "-q", str(tree), args.baseline], cwd=ROOT,
-                               check=True)
-            try:
+        if args.repeat and args.baseline:
+            with worktree(args.baseline, Path(tmp) / "paired-baseline") as tree:
                 paired = interleaved(args.repeat, Path(tmp), tree)
-            finally:
-                if tree is not None:
-                    subprocess.run(["git", "worktree", "remove", "--force", str(tree)], cwd=ROOT, check=False)
+        elif args.repeat:
+            paired = interleaved(args.repeat, Path(tmp), None)
         for pmax in args.pmax:
             if pmax <= args.one_process_max:
                 runs.append(build(pmax, 1, Path(tmp) / f"p{pmax}-1"))   # the old way: one process, cold

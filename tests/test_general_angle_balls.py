@@ -31,9 +31,9 @@ def test_default_tier_is_a_prefix_of_the_full_set():
 @pytest.mark.slow
 def test_full_ball_checks():
     """All 42 checks, on two worker processes (the suite runs in one process; the checks are independent)."""
-    from loky import get_reusable_executor
+    from suslov.executor import run_chunks   # the build's and the sweeps' worker pool
 
-    rows = list(get_reusable_executor(max_workers=2).map(general_angle._run_check, JOBS))
+    rows, _ = run_chunks(general_angle._run_check, JOBS, [str(i) for i in range(len(JOBS))], workers=2)
     failures = []
     for (body, kind, digits, _), row in zip(JOBS, rows):
         distance = row["relative_float"] if kind == "trace" else row["difference_float"]
