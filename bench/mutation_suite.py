@@ -195,7 +195,8 @@ def detector_command(detector: str, tree: Path) -> list[str]:
     if detector == "verify":
         return [sys.executable, "build_formulas.py", "--quiet", "--verify", "generated"]
     if detector.startswith("test:"):
-        return [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", detector[5:]]
+        # -n 0: one detector subset is small, and the mutants already run side by side
+        return [sys.executable, "-m", "pytest", "-x", "-q", "-n", "0", "-p", "no:cacheprovider", detector[5:]]
     raise ValueError(f"unknown detector {detector!r}")
 
 

@@ -1,11 +1,11 @@
 """The tests the quick loop (``pytest -m "not slow"``) leaves out, from a timed run of the whole suite (issue 43).
 
-Reads the output of ``python -m pytest -p no:randomly --durations=0`` on standard input and prints, sorted, the
+Reads the output of ``python -m pytest -n 0 --durations=0`` on standard input and prints, sorted, the
 node id of every test whose setup, call and teardown took at least ``--threshold`` seconds (0.3) together; the suite's
 ``tests/conftest.py`` marks the ids listed in ``tests/slow_tests.txt`` as ``slow`` (CI still runs them: the
 README's test command runs everything).  Regenerate after adding costly tests:
 
-    CI=true python -m pytest --durations=0 -q | python bench/slow_tests.py > tests/slow_tests.txt
+    CI=true python -m pytest -n 0 --durations=0 -q | python bench/slow_tests.py > tests/slow_tests.txt
 
 Tests that use a whole-build fixture (``default_build``, ``cli_build``, ``wheel``, ``venv``) are marked slow by
 the conftest whatever this list says.
