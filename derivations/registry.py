@@ -21,6 +21,7 @@ from derivations.sections import (
     hypergeometric,
     kovalevskaya,
     meromorphic,
+    meromorphy_theorem,
     model,
     residue,
     scattering,
@@ -29,7 +30,8 @@ from derivations.sections import (
 
 DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, kovalevskaya, residue, hypergeometric,
                                                    meromorphic, first_integrals, scattering, galois,
-                                                   fuchsian, gauss, general_angle, general_galois)}
+                                                   fuchsian, gauss, general_angle, general_galois,
+                                                   meromorphy_theorem)}
 
 
 def requirements(name: str) -> tuple[str, ...]:

@@ -32,12 +32,14 @@ from suslov.kernel.cost import enclosure_seconds, monodromy_seconds, seconds_lim
 from suslov.kernel.gauss_angle import gauss_parameters
 from suslov.kernel.kimura import GaloisGroup, exact_body, exact_invariants
 from suslov.kernel.kimura import galois_group as _galois_group
+from suslov.kernel.local_behaviour import LocalBehaviour
+from suslov.kernel.local_behaviour import local_behaviour as _local_behaviour
 from suslov.kernel.validate import MAX_ENTRY_BITS  # noqa: F401 (the one size limit of exact input, named here too)
 from suslov.kernel.validate import PREC_RANGE, ball_prec, mp_dps, precision, rational, renamed_keywords, shown
 from suslov.loader import gf
 
 __all__ = ["AngleEnclosure", "EnclosureTooCostly", "GaloisGroup", "HypergeometricForm", "MonodromyTooCostly",
-           "galois_group",
+           "LocalBehaviour", "galois_group", "local_behaviour",
            "hypergeometric_form", "monodromy", "omega_coefficients", "scattering_angle_enclosure"]
 
 
@@ -147,6 +149,24 @@ def galois_group(I11, I22, I13, I23) -> GaloisGroup:
     ('SO(3,C)', False, True)
     """
     return _galois_group(I11, I22, I13, I23)
+
+
+def local_behaviour(I11, I22, I13, I23) -> LocalBehaviour:
+    """Meromorphic, logarithmic or branching at the poles of omega, decided exactly for any body (a theorem for every p).
+
+    ``kind`` is "meromorphic" (the Kovalevskaya exponent Lambda an odd integer: every solution of the Poisson
+    equations is meromorphic at every pole t0 = +-i pi/2 + i pi k), "logarithmic" (Lambda even, 0 included) or
+    "branching" (Lambda not an integer); ``Lambda``, ``lambda_squared`` (exact), ``exponents`` at t0 and
+    ``reason``.  For I13 = 0, Lambda = p: Theorem 3.1 and its converse, and the logarithms of Conjecture 5.2, for
+    every p.  Entries are read exactly as in :func:`galois_group` (same limits, same ValueError).  The theorem
+    and its proof: :mod:`suslov.kernel.local_behaviour`.
+
+    >>> local_behaviour(2, 1, 0, "-1/101").kind, local_behaviour(2, 1, 0, "-1/100").Lambda   # p = 101, p = 100
+    ('meromorphic', 100)
+    >>> local_behaviour(2, 1, 0, "-1/100").kind
+    'logarithmic'
+    """
+    return _local_behaviour(I11, I22, I13, I23)
 
 
 def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, dps: int | None = None,
@@ -333,38 +353,15 @@ def _with_exact_decision(result, I11, I22, I13, I23):
 
 
 def _exact_trivial_at_poles(I11, I22, I13, I23) -> tuple:
-    """(True, certificate) when I13 = 0 and p is an odd integer within the range the active formulas
-    certified (``PMAX``: the exact Frobenius recursion of derivations/sections/residue.py finds no
-    logarithm at t0 = i pi/2 for every odd p up to it); (False, reason) otherwise.  Beyond PMAX the
-    paper's claim is not certified here, and the balls alone cannot prove M(+-i) = I."""
-    p = _odd_integer_p(I11, I22, I13, I23)
-    if not p:
-        return False, ""
-    pmax = int(gf.PMAX)
-    if p > pmax:
-        return False, (f"odd p = {p} beyond the certified range p <= {pmax} of the loaded formulas "
-                       "(suslov.load_formulas(pmax=...) certifies more)")
-    return True, f"p = {p} odd, no logarithms at t0 = i pi/2 (certified by the build, residue, p <= {pmax})"
-
-
-def _odd_integer_p(I11, I22, I13, I23) -> int:
-    """Exactly (in rationals): p when I13 = 0 and p^2 = I22 (I11 - I22)/I23^2 is the square of an odd
-    integer p -- the case whose local monodromy at the poles is trivial (certified per p:
-    derivations/sections/residue.py) -- or, by the symmetry eq:lina (I11 <-> I22, I13 <-> I23, certified
-    by derivations/sections/kovalevskaya.py), when I23 = 0 and p^2 = I11 (I22 - I11)/I13^2 is; else 0.
-    Floats are taken as the binary numbers they are; 0 when an entry is not exactly rational."""
-    from math import isqrt
-
+    """(True, reason) when the theorem of :mod:`suslov.kernel.local_behaviour` (certified by the build:
+    meromorphy_theorem) says every solution is meromorphic at the poles -- the Kovalevskaya exponent Lambda an odd
+    integer, for every p, not only the p a build's per-p recursion reached -- so the loops about x = +-i are the
+    identity; (False, "") otherwise, and for input that is not an exact body."""
     try:
-        a, b, c, e = (rational(n, x) for n, x in zip(("I11", "I22", "I13", "I23"), (I11, I22, I13, I23)))
+        behaviour = _local_behaviour(I11, I22, I13, I23)
     except ValueError:
-        return 0
-    if e == 0 and c != 0:
-        a, b, c, e = b, a, e, c          # eq:lina
-    if c != 0 or e == 0 or not a > b:
-        return 0
-    p2 = b * (a - b) / (e * e)
-    if p2.denominator != 1:
-        return 0
-    root = isqrt(p2.numerator)
-    return root if root * root == p2.numerator and root % 2 == 1 else 0
+        return False, ""
+    if not behaviour.meromorphic:
+        return False, ""
+    return True, (f"Lambda = {behaviour.Lambda} odd: every solution meromorphic at the poles, M(x = +-i) = I "
+                  "(theorem for every p, certified: meromorphy_theorem)")

@@ -109,7 +109,7 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
                      "radius": summary["radius"], "certificate": cert.key, "digits": summary["digits"],
                      "tests": "".join({"pass": "+", "fail": "-", "unknown": "?"}[outcome_]
                                       for _, outcome_, _ in summary["certificates"][:5]),
-                     "exponents": summary["exponents"]})
+                     "exponents": summary["exponents"], "not_identity_at_i": summary["not_identity_at_i"]})
     # agreement with the exact local analysis: trivial local monodromy at the poles exactly for odd p
     agree = all((row["verdict"] == "reducible") == (row["case"].startswith("odd")) for row in rows)
     # (the p of the exact analysis this build ran: --pmax 1 or 2 has no row for p = 2 or 3)
