@@ -35,7 +35,7 @@ from suslov.kernel.kimura import galois_group as _galois_group
 from suslov.kernel.local_behaviour import LocalBehaviour
 from suslov.kernel.local_behaviour import local_behaviour as _local_behaviour
 from suslov.kernel.validate import MAX_ENTRY_BITS  # noqa: F401 (the one size limit of exact input, named here too)
-from suslov.kernel.validate import PREC_RANGE, ball_prec, mp_dps, precision, rational, renamed_keywords, shown
+from suslov.kernel.validate import PREC_RANGE, ball_prec, mp_dps, precision, renamed_keywords, shown
 from suslov.loader import gf
 
 __all__ = ["AngleEnclosure", "EnclosureTooCostly", "GaloisGroup", "HypergeometricForm", "MonodromyTooCostly",

@@ -61,7 +61,8 @@ import sympy as sp
 from derivations.core.certificates import Certificate, CertificateLog, Outcome
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
-from derivations.sections.gauss import I_EXT, U, j
+from derivations.sections.fuchsian import cross
+from derivations.sections.gauss import I_EXT, U, j, spinor
 from suslov.kernel.local_behaviour import local_behaviour
 
 NAME = "meromorphy_theorem"
@@ -80,16 +81,6 @@ S34 = Domain("Q(d)[c, i]/(c^2 - d^2 - 1, i^2 + 1)", (Extension(c_, d_**2 + 1, "c
 
 THEOREM = ("meromorphic at every pole iff Lambda is odd; a logarithm at every pole iff Lambda is even; "
            "branching otherwise")
-
-
-def cross(w) -> sp.Matrix:
-    """C(w) with y C(w) = y x w (row vectors)."""
-    return sp.Matrix([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
-
-
-def spinor(w) -> sp.Matrix:
-    """S(w) = -(i/2)(w1 sigma3 + w2 sigma1 + w3 sigma2) (the lift of :mod:`derivations.sections.gauss`)."""
-    return -j / 2 * sp.Matrix([[w[0], w[1] - j * w[2]], [w[1] + j * w[2], -w[0]]])
 
 
 def _conj(expr):
