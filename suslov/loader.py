@@ -16,10 +16,12 @@ with the per-p objects up to its ``PMAX``.  This module finds the one in use and
 * :data:`gf` -- a stand-in that forwards attribute access to the active module at call time, so the
   simulator modules follow :func:`use_formulas` without re-importing.
 
-A module loaded here answers ``load_certificates()`` from the bytes of ``certificates.json`` read once
-when it was loaded and checked then against the tree's manifest (:func:`_bind_certificates`); the
-emitted function would read the file again at each call, after the verified load, and return an edit
-made in between unchecked (issue 44).
+A module loaded here answers ``load_certificates()`` from the bytes of ``certificates.json`` that
+:func:`suslov.manifest.verify` read and checked against the tree's manifest -- the one read of that file
+(:func:`_bind_certificates`); the emitted function would read the file again at each call, after the
+verified load, and return an edit made in between unchecked (issue 44).  Before a build for
+:func:`load_formulas`, the certificate cache it installs from must be private like the store
+(:func:`suslov.manifest.refuse_shared_cache`).
 
 Building needs the ``[build]`` extra (SymPy, symengine, Jinja2); without it :func:`load_formulas` says
 which extra to install.  The build runs in a child process that ends with its caller: Ctrl-C stops both,
@@ -39,10 +41,13 @@ import suslov.manifest as manifest
 from suslov.extras import require
 from suslov.interrupts import die_with_parent
 
-__all__ = ["active_formulas", "use_formulas", "load_formulas", "store_dir", "gf", "FORMULAS_ENV", "DATA_ENV"]
+__all__ = ["active_formulas", "use_formulas", "load_formulas", "store_dir", "cache_dir", "gf", "FORMULAS_ENV",
+           "DATA_ENV", "CACHE_ENV"]
 
 FORMULAS_ENV = "SUSLOV_FORMULAS"   # a directory holding a generated suslov_formulas.py
 DATA_ENV = "SUSLOV_DATA_DIR"       # the per-user store (default: $XDG_DATA_HOME/suslov-certified)
+CACHE_ENV = "SUSLOV_CACHE_DIR"     # the build's certificate cache (default: $XDG_CACHE_HOME/suslov-certified)
+NO_CACHE_ENV = "SUSLOV_NO_CACHE"   # set: builds bypass the cache (derivations/output/cli.py)
 _active: ModuleType | None = None
 _loaded: dict = {}
 
@@ -58,10 +63,37 @@ def store_dir() -> Path:
     return Path(platformdirs.user_data_dir("suslov-certified", appauthor=False))
 
 
-def _pmax_of(directory: Path) -> int | None:
+def cache_dir() -> Path:
+    """The build's certificate cache, as ``derivations.core.cache.cache_root`` finds it (kept in step by hand:
+    the loader must not import the derivations): ``$SUSLOV_CACHE_DIR``, else the platform's per-user cache
+    directory (``$XDG_CACHE_HOME/suslov-certified`` or ``~/.cache/suslov-certified`` on Linux)."""
+    if os.environ.get(CACHE_ENV):
+        return Path(os.environ[CACHE_ENV])
+    import platformdirs
+
+    return Path(platformdirs.user_cache_dir("suslov-certified", appauthor=False))
+
+
+CERTIFICATES = "certificates.json"
+
+
+def _pmax_in(data: bytes) -> int | None:
     try:
-        return int(json.loads((directory / "certificates.json").read_text(encoding="utf-8"))["pmax"])
-    except (OSError, ValueError, KeyError, TypeError):
+        value = json.loads(data.decode("utf-8"))["pmax"]
+    except (ValueError, KeyError, TypeError):
+        return None
+    return value if isinstance(value, int) and not isinstance(value, bool) and value >= 1 else None
+
+
+def _pmax_of(directory: Path) -> int | None:
+    """The PMAX a store entry's ``certificates.json`` states, or None (unreadable; the entry is ignored).
+
+    Read only if it is a regular file: a FIFO there is refused (``NotRegularFile``, naming it) rather than
+    blocking :func:`load_formulas` forever.  This read only chooses an entry; :func:`_load_directory` then
+    verifies the entry and uses the bytes it checked."""
+    try:
+        return _pmax_in(manifest.read_regular(directory / CERTIFICATES))
+    except OSError:
         return None
 
 
@@ -70,46 +102,43 @@ def _load_directory(directory: Path) -> ModuleType:
     key = str(directory)
     if key in _loaded:
         return _loaded[key]
-    path = directory / "suslov_formulas.py"
-    if not path.is_file() or _pmax_of(directory) is None:
+    if not all(os.path.lexists(directory / name) for name in (manifest.MODULE, CERTIFICATES)):
         raise FileNotFoundError(f"{directory}: not a generated tree (needs suslov_formulas.py and a readable "
                                 "certificates.json; write one with build_formulas.py --out DIR)")
-    # a distinct module name per directory: two ranges can be loaded side by side; the manifest is
-    # checked and exactly the checked bytes are executed (suslov.manifest)
-    module = manifest.load_module(directory, f"suslov_formulas_{abs(hash(key)):x}")
+    # the manifest and who can write are checked, and every file read once (a FIFO refused, never opened
+    # blocking), before anything runs; certificates.json is judged from those same bytes
+    contents = manifest.verify(directory)
+    if _pmax_in(contents[CERTIFICATES]) is None:
+        raise ValueError(f"{directory / CERTIFICATES}: no positive integer 'pmax'; not a generated tree (write one "
+                         "with build_formulas.py --out DIR)")
+    # a distinct module name per directory: two ranges can be loaded side by side; exactly the checked bytes
+    # are executed (suslov.manifest)
+    module = manifest.load_module(directory, f"suslov_formulas_{abs(hash(key)):x}", contents=contents)
     _bind_certificates(module, directory)
     _loaded[key] = module
     return module
 
 
-CERTIFICATES = "certificates.json"
-
-
 def _bind_certificates(module: ModuleType, directory: Path) -> ModuleType:
-    """Replace ``module.load_certificates`` by one that parses the bytes of ``certificates.json`` checked here.
+    """Replace ``module.load_certificates`` by one that parses the verified bytes of ``certificates.json``.
 
-    The file is read once; its SHA-256 must be the one the tree's manifest records (a file changed since
-    the module's verified load is refused, :class:`suslov.manifest.ManifestError`); ``load_certificates()``
-    then parses exactly those bytes at every call, whatever happens to the file afterwards.  The one
-    exception is the build's own stale ``generated/`` (``SUSLOV_REBUILDING``, :mod:`suslov.manifest`): that tree
-    is loaded unverified and keeps its emitted function.
+    The bytes are those :func:`suslov.manifest.verify` read and checked against the tree's manifest when the
+    module was loaded (:func:`suslov.manifest.verified_files`): the file is read once, and
+    ``load_certificates()`` parses exactly those bytes at every call, whatever happens to the file afterwards.
+    A module imported some other way (found in ``sys.modules``) has its tree verified here, and those bytes are
+    used.  The one exception is the build's own stale ``generated/`` (``SUSLOV_REBUILDING``,
+    :mod:`suslov.manifest`): that tree is loaded unverified and keeps its emitted function.
     """
     if getattr(getattr(module, "load_certificates", None), "verified_bytes", None) is not None:
         return module   # bound already (a module taken from sys.modules)
     directory = Path(os.path.realpath(directory))
-    if os.environ.get(manifest.REBUILD_ENV) == str(directory):
-        return module
-    expected = manifest.read(directory)[CERTIFICATES]
-    path = directory / CERTIFICATES
-    try:
-        with open(path, "rb") as handle:   # the one read: these bytes are checked and parsed
-            data = handle.read()
-    except OSError as error:
-        raise manifest.ManifestError(f"{path}: cannot be read ({error.strerror or error}); refusing the tree") from None
+    files = manifest.verified_files(module)
+    if files is None:
+        if os.environ.get(manifest.REBUILD_ENV) == str(directory):
+            return module
+        files = manifest.verify(directory)
+    data = files[CERTIFICATES]
     found = manifest.digest(data)
-    if found != expected:
-        raise manifest.ManifestError(f"{path}: SHA-256 {found} where {manifest.MANIFEST} records {expected}: the "
-                                     "file was changed after the build (or during this load); refusing the tree")
     emitted = module.load_certificates
 
     def load_certificates() -> dict:
@@ -206,6 +235,11 @@ def load_formulas(pmax: int | None = None, path=None, *, build: bool = True, use
 
 def _build(pmax: int, quiet: bool) -> None:
     require("build", f"load_formulas(pmax={pmax}) beyond the shipped module (pmax {active_formulas().PMAX})")
+    if not os.environ.get(NO_CACHE_ENV):
+        # the build installs whole trees and unpickles per-p results from the cache: a cache others can write
+        # would hand us their module with a consistent manifest, so it is held to the store's rule (issue 44)
+        manifest.refuse_shared_cache(cache_dir(), f"${CACHE_ENV}" if os.environ.get(CACHE_ENV) else
+                                     "the certificate cache")
     command = [sys.executable, "-m", "suslov.build", "--pmax", str(pmax), "--install"] + (["--quiet"] if quiet else [])
     # the child dies with this process (SIGTERM; its own workers die with it in turn)
     with subprocess.Popen(command, stdout=subprocess.DEVNULL if quiet else None,

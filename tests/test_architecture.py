@@ -88,7 +88,7 @@ def floor(name: str) -> int:
              ("derivations.sections", 7),
              ("derivations.core", 6), ("derivations", 6), ("suslov.simulator", 5), ("generated", 4),
              ("suslov.validated", 3), ("suslov.runtime", 3), ("suslov.executor", 2), ("suslov.loader", 1),
-             ("suslov.outdir", 0), ("suslov.manifest", 0), ("suslov.kernel", 0), ("suslov.recipes", 0),
+             ("suslov.outdir", 0), ("suslov.manifest", 0), ("suslov.acl", 0), ("suslov.kernel", 0), ("suslov.recipes", 0),
              ("suslov.interrupts", 0), ("suslov.extras", 0), ("suslov.cli", 5), ("suslov", 5)]
     for prefix, level in order:
         if name == prefix or name.startswith(prefix + "."):
