@@ -14,7 +14,10 @@ problem.  From :mod:`derivations.sections.gauss` the spinor lift of the Poisson 
    The ss solution is the exponent-0 solution at s = oo, ``S(gamma) = Psi H Psi^-1`` with
    ``H = diag(1, -1)`` (its value -n = -u/|u| at both ends); after the loop it is ``Psi M H M^-1 Psi^-1``,
    whose H-coefficient is ``a d + b c = 2 a d - 1`` (certified), and the oscillating rest is orthogonal
-   to n.  So ``cos Delta psi = 2 a d - 1``, i.e. ``cos^2(Delta psi/2) = a d``.
+   to n.  So ``cos Delta psi = 2 a d - 1``, i.e. ``cos^2(Delta psi/2) = a d``.  The same ``a d`` follows,
+   without the monodromy relation, from Kummer's connection formulas of Gauss's equation (Gamma-function
+   coefficients, DLMF 15.10.21-22) and the reflection formula: certified equal, an exact zero test
+   (:func:`_kummer_connection`).
 2. **Real form (exact).**  For real u, v, ``mu = -conj(kappa)``, so ``tau' = conj(tau)`` and
    ``cos^2(Delta psi/2) = [cosh(pi U)|tau|^2 - Re(tau^2)] / (2 sinh^2(pi U))`` (certified in exponentials).
 3. **Evaluation form (exact, emitted).**  With ``w_- = X + i Y``, ``h = pi U/2``, ``g = pi (U - X)/2``
@@ -28,10 +31,12 @@ problem.  From :mod:`derivations.sections.gauss` the spinor lift of the Poisson 
 4. **Theorem 5.2 (exact reduction).**  For I13 = 0: ``w_-^2 = -p^2`` (X = 0, |Y| = |p|) and
    ``U = |p|/d``; the evaluation form at ``g = h = pi |p|/(2d)`` is the emitted Theorem 5.2 form, and
    ``a d = cos^2(pi p/2)/cosh^2(pi p/(2d))`` (certified).
-5. **Analytic steps, against two independent validated routes (balls, :mod:`general_angle_balls`).**
+5. **Corroboration by two independent validated routes (balls, :mod:`general_angle_balls`).**
    On seeded bodies: the closed form against the ss enclosure (validated integration along the real
    axis), and the traces predicted by the closed-form monodromy (local and mixed) against the
-   complex-path monodromy in x = e^t.  A pass proves the stated bound on the distance.
+   complex-path monodromy in x = e^t.  A pass proves the stated bound on the distance.  The default
+   build runs one trace body at 30 digits and five enclosures; ``--ball-checks full`` (and the test suite)
+   the 20 seeded bodies.
 """
 from __future__ import annotations
 
@@ -69,10 +74,10 @@ class BallTier:
     deep_digits: int
 
 
-# "default" keeps the cold build in seconds (about 2.5 s of ball work, not 26 s); "full" is the set the
-# analytic step was first corroborated on (build_formulas.py --ball-checks full; tests/test_general_angle_balls.py
-# runs it without a build)
-BALL_TIERS = {"default": BallTier(2, 100, 4, 20, 1, 30),
+# "default" keeps the cold build in seconds (about 1 s of ball work, not 26 s): the connection is exact (Kummer's
+# formulas, step 1), the balls corroborate it; "full" is the set the analytic step was first corroborated on
+# (build_formulas.py --ball-checks full; tests/test_general_angle_balls.py runs it without a build)
+BALL_TIERS = {"default": BallTier(1, 30, 4, 20, 1, 30),
               "full": BallTier(SEEDED, 100, SEEDED, 20, 2, 100)}
 
 
@@ -131,6 +136,48 @@ def _stable_parts(E_h, E_g, s_, c_):
     return sin2, cos2
 
 
+def _kummer_connection(log: CertificateLog, ad) -> Certificate:
+    """The diagonal of M_i from Gauss's connection formulas, independently of the monodromy relation (step 1).
+
+    Kummer's solutions at z = 0 (``f1 = F(A, B; C; z)``, ``f2 = z^(1-C) F(A-C+1, B-C+1; 2-C; z)``) in terms of
+    those at z = oo (``g1 ~ (-z)^(-A)``, ``g2 ~ (-z)^(-B)``, in which M_oo is diagonal): ``f = P g`` with
+    ``P11 = G(C) G(B-A)/(G(B) G(C-A))``, ``P12 = G(C) G(A-B)/(G(A) G(C-B))`` and, for f2, the same with (A, B, C)
+    -> (A-C+1, B-C+1, 2-C) times a phase common to its row (DLMF 15.8.2, 15.10.21-22).  The loop about z = 0
+    multiplies f by diag(1, lam), ``lam = e^(-2 pi i kappa)``, and psi1 by the scalar ``e^(i pi kappa)``, so in
+    the basis g: ``M_i = e^(i pi kappa) P^-1 diag(1, lam) P`` and, with ``rho = P12 P21/(P11 P22)`` (the phases
+    cancel), ``a d = e^(2 pi i kappa) (1 - lam rho)(lam - rho)/(1 - rho)^2``.  The four Gamma pairs of rho have
+    arguments summing to 1 (checked), so the reflection formula ``G(x) G(1-x) = pi/sin(pi x)`` gives
+    ``rho = sin(pi A) sin(pi (C-B))/(sin(pi B) sin(pi (C-A)))``; with ``k = e^(i pi kappa/2)``,
+    ``n = e^(i pi mu/2)``, ``w = e^(-pi U/2)`` every factor is rational in k, n, w, and the result equals the
+    ``a d`` of the monodromy relation: an exact zero test.
+    """
+    k, n, w = sp.symbols("k n w")
+    kappa_, mu_, U_ = sp.symbols("kappa mu U")
+    A = (2 + kappa_ + mu_ + j * U_) / 2
+    B = (kappa_ + mu_ - j * U_) / 2
+    C = 1 + kappa_
+    pairs = [(B, 1 - B), (C - A, A - C + 1), (A, 1 - A), (C - B, B - C + 1)]
+    c_pairs = certify_zero(log, "the Gamma factors of $rho = P12 P21/(P11 P22) = Gamma(B) Gamma(C - A) Gamma(A - C + 1) "
+                           "Gamma(1 - B)/(Gamma(A) Gamma(C - B) Gamma(B - C + 1) Gamma(1 - A))$ pair into arguments "
+                           "$x$, $1 - x$ (reflection formula)", "derived",
+                           [x + y - 1 for x, y in pairs], Domain("Q(kappa, mu, U)[i]/(i^2+1)", (I_EXT,)))
+
+    def sin_half(e):       # sin(pi x/2) with e = e^(i pi x/2)
+        return (e - 1 / e) / (2 * j)
+
+    # sin(pi A) = -sin(pi (kappa + mu + iU)/2), sin(pi (C - B)) = -sin(pi (kappa - mu + iU)/2): the signs cancel
+    rho = (sin_half(k * n * w) * sin_half(k / n * w)) / (sin_half(k * n / w) * sin_half(k / (n * w)))
+    lam_ = 1 / k**4
+    connection_ad = k**4 * (1 - lam_ * rho) * (lam_ - rho) / (1 - rho) ** 2
+    relation_ad = ad.subs({tau: k**2 + 1 / k**2, taup: n**2 + 1 / n**2, m: w**2})
+    c_connection = certify_zero(log, "Kummer's connection (DLMF 15.10.21-22) and the reflection formula give $a d = e^(2 pi i kappa) "
+                                "(1 - lam rho)(lam - rho)/(1 - rho)^2$, $lam = e^(-2 pi i kappa)$, $rho = sin(pi A) "
+                                "sin(pi (C - B))/(sin(pi B) sin(pi (C - A)))$: equal to the $a d$ of the monodromy "
+                                "relation ($k = e^(i pi kappa/2)$, $n = e^(i pi mu/2)$, $w = e^(-pi U/2)$)", "derived",
+                                connection_ad - relation_ad, Domain("Q(k, n, w)[i]/(i^2+1)", (I_EXT,)))
+    return c_pairs, c_connection
+
+
 def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     result = DerivationResult(NAME)
     # the ball checks need no other result: started with the build in the worker processes (PREFETCH);
@@ -147,6 +194,7 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     c_diag = certify_zero(log, "$a + d = tau$ and $m a + d/m = tau_p$ give $a d = (tau tau_p (m + 1/m) - tau^2 - tau_p^2)/"
                           "(m - 1/m)^2$ ($M_i$ with rows $(a, b)$, $(c, d)$; $M_oo = diag(m, 1/m)$)", "derived",
                           [m * a_sol + d_sol / m - taup, a_sol * d_sol - ad], Domain("Q(tau, tau_p, m)"))
+    c_kummer = _kummer_connection(log, ad)
     Mi = sp.Matrix([[A_, B_], [C_, (1 + B_ * C_) / A_]])          # det M_i = 1
     H = sp.diag(1, -1)
     conj = Mi * H * Mi.inv()
@@ -222,7 +270,7 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     result.formula("general_angle", "Theorem 5.2", "Scattering angle of every body",
                    r"\cos^2\frac{\Delta\psi}2=\frac{\cosh(\pi U)\,|\tau|^2-\operatorname{Re}\tau^2}{2\sinh^2(\pi U)},"
                    r"\quad \tau=2\cos(\pi\kappa),\ \kappa=\tfrac i2 w_-,\ w_-^2=(u-iv)\cdot(u-iv),\ U=|u|",
-                   c_diag, c_entry, c_real, c_traces, c_angles, c_deep)
+                   c_diag, *c_kummer, c_entry, c_real, c_traces, c_angles, c_deep)
     result.formula("general_angle_stable", "Theorem 5.2", "Scattering angle of every body, evaluation form",
                    r"\Delta\psi=2\operatorname{atan2}\Big(\sqrt{\tfrac{\operatorname{expm1}(-2g)\operatorname{expm1}(2g-4h)}"
                    r"{\operatorname{expm1}(-2h)^2}q},\ \sqrt{c^2\operatorname{sech}^2h+\tfrac{e^{-2g}\operatorname{expm1}"
@@ -236,7 +284,7 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     q = Tb**2 + ss**2 * Sb**2
     angle = 2 * sp.atan2(sp.sqrt(expm1(-2 * g) * expm1(2 * g - 4 * h) * q / Eb**2),
                          sp.sqrt(cc**2 * Sb**2 + sp.exp(-2 * g) * expm1(2 * g - 2 * h) ** 2 * q / Eb**2))
-    emit = [Emitted("general_angle", (h, g, ss, cc), (), (angle,), (c_stable.key, c_real.key, c_angles.key),
+    emit = [Emitted("general_angle", (h, g, ss, cc), (), (angle,), (c_stable.key, c_real.key, c_kummer[1].key, c_angles.key),
                     "Delta psi of any body from h = pi U/2, g = pi (U - X)/2, s = |sin(pi Y/2)|, c = |cos(pi Y/2)| "
                     "(w_- = X + i Y; evaluation form).")]
     result.exports.update(emit=emit, certificates={"angle": c_angles.key, "stable": c_stable.key,
