@@ -202,6 +202,14 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
                    r"15.10(ii)), so $M=\pm(I+N)$, $N\ne0$, and $\mathrm{Ad}(M^2)$ is unipotent, not $1$. The paper's "
                    r"$s_3,s_4$ are $s=-ic$ with $1+s^2=-d^2\ne0$: ordinary points, never logarithmic.}",
                    *proof, c_s34, c_galois_agree)
+    keys = gauss_result.exports["certificates"]
+    result.formula("no_painleve", "Conclusion", "Every solution through Gauss's ${}_2F_1$, for every $p$ (no Painlev\\'e reduction needed)",
+                   r"\parbox{0.94\linewidth}{\small The Conclusion expects a Painlev\'e reduction for even $p$. Instead, "
+                   r"for every $p$ and every body, $S(\gamma)=\Psi S(\gamma_0)\Psi^{-1}$ with the spinor lift $\Psi$, "
+                   r"whose first row is $z^{\kappa/2}(1-z)^{\mu/2}F$ with $F$ solving Gauss's equation "
+                   r"($z=(1+i\sinh t)/2$) and the second $(\psi_1'-a\psi_1)/b$: every solution of the Poisson equations "
+                   r"is quadratic in ${}_2F_1$ functions and their derivatives.}",
+                   *(c for c in log.certificates if c.key in (keys["lift"], keys["gauss"])))
     result.exports.update(certificates={"pole": c_pole.key, "residue": c_residue.key, "square": c_square.key,
                                         "params": c_params.key, "unipotent": c_unipotent.key, "s34": c_s34.key,
                                         "residue_agree": c_residue_agree.key, "galois_agree": c_galois_agree.key,
