@@ -85,3 +85,36 @@ def test_monodromy_uses_the_theorem_beyond_any_pmax():
     mono = monodromy(2, 1, 0, "-1/17", dps=15)
     assert mono.verdict == "reducible"
     assert any("theorem for every p" in str(c) for c in mono.certificates)
+
+
+def _scene_verdict(body):
+    import suslov
+
+    result = suslov.simulate({"body": body, "motion": {"time": [-1, 1], "samples": 3},
+                              "effects": {"compute": ["local_behaviour"]}})
+    return result.results["local_behaviour"]
+
+
+@pytest.mark.parametrize("p, kind", [(1, "meromorphic"), (3, "meromorphic"), (5, "meromorphic"), (2, "logarithmic"),
+                                     (4, "logarithmic"), ("2.5", "branching")])
+def test_the_simulator_effect_decides_the_scene_body_as_written(p, kind):
+    """p and d as a scene gives them (d = 1.0 is the binary 1, p = '2.5' the decimal): Lambda = p for I13 = 0."""
+    verdict = _scene_verdict({"p": p, "d": 1.0})
+    assert verdict["kind"] == kind
+    assert verdict["Lambda"] == (p if isinstance(p, int) else None)
+
+
+def test_a_tensor_turned_about_the_constraint_axis_keeps_its_verdict():
+    """The p = 3 body (2, 1, 0, -1/3) turned about e3 by the rational rotation (3/5, 4/5): I12 != 0 in the scene's
+    frame, the same body; and a general body with irrational paper-frame entries (u.v != 0) branches."""
+    c, s = Fraction(3, 5), Fraction(4, 5)
+    A = [[2, 0], [0, 1]]
+    R = [[c, -s], [s, c]]
+    turned = [[sum(R[i][k] * A[k][l] * R[j][l] for k in range(2) for l in range(2)) for j in range(2)] for i in range(2)]
+    b = [sum(R[i][k] * bk for k, bk in enumerate((0, Fraction(-1, 3)))) for i in range(2)]
+    inertia = [[str(turned[0][0]), str(turned[0][1]), str(b[0])], [str(turned[1][0]), str(turned[1][1]), str(b[1])],
+               [str(b[0]), str(b[1]), "3"]]
+    verdict = _scene_verdict({"inertia": inertia})
+    assert (verdict["kind"], verdict["Lambda"]) == ("meromorphic", 3)
+    general = _scene_verdict({"inertia": [["2", "0.5", "0.3"], ["0.5", "1", "-0.2"], ["0.3", "-0.2", "3"]]})
+    assert general["kind"] == "branching"

@@ -23,7 +23,7 @@ from math import isqrt
 from suslov.kernel.kimura import exact_body, exact_invariants
 from suslov.kernel.validate import shown
 
-__all__ = ["LocalBehaviour", "local_behaviour"]
+__all__ = ["LocalBehaviour", "classify", "local_behaviour"]
 
 METHOD = ("exact: the certified theorem (meromorphy_theorem: the local monodromy of Gauss's equation at s = +-i, "
           "two loops per pole of omega) decided in rational arithmetic")
@@ -73,24 +73,31 @@ def local_behaviour(I11, I22, I13, I23) -> LocalBehaviour:
     """
     a11, a22, a13, a23 = values = exact_body(I11, I22, I13, I23)
     invariants = exact_invariants(*values)
-    re_w2 = invariants["Re w_-^2"]
     q, R = invariants["Im w_-^2"]
-    lambda_squared = (-re_w2, (q, R))           # Lambda^2 = -conj(w_-^2): real part -Re, imaginary part +Im
+    lambda_squared = (-invariants["Re w_-^2"], (q, R))     # Lambda^2 = -conj(w_-^2)
     if a13 * a23 * (a11 - a22) != 0:
+        return classify(None, lambda_squared, "u.v != 0 (I13 I23 (I11 - I22) != 0)")
+    return classify(-invariants["Re w_-^2"], lambda_squared, "u.v = 0")
+
+
+def classify(real_square, lambda_squared, why_uv: str, method: str = METHOD) -> LocalBehaviour:
+    """The theorem's verdict from Lambda^2: ``real_square`` is Lambda^2 when it is real (u.v = 0, a Fraction), else
+    None (then Lambda is not real, hence not an integer); ``why_uv`` says how u.v was decided (shown in the reason)."""
+    if real_square is None:
         return LocalBehaviour("branching", lambda_squared, None, "0, +-conj(Lambda) with Lambda not real",
-                              "u.v != 0 (I13 I23 (I11 - I22) != 0): Lambda^2 is not real, so Lambda is not an integer "
-                              "and a loop about a pole multiplies a solution by e^(2 pi i Lambda) != 1")
-    square = -re_w2
+                              f"{why_uv}: Lambda^2 is not real, so Lambda is not an integer and a loop about a pole "
+                              "multiplies a solution by e^(2 pi i Lambda) != 1", method)
+    square = real_square
     root = isqrt(square.numerator) if square >= 0 and square.denominator == 1 else None
     if root is None or root * root != square.numerator:
         return LocalBehaviour("branching", lambda_squared, None, f"0, +-Lambda with Lambda^2 = {shown(square)}",
-                              f"u.v = 0 and Lambda^2 = {shown(square)} is not the square of an integer: a loop about a "
-                              "pole multiplies a solution by e^(2 pi i Lambda) != 1")
+                              f"{why_uv} and Lambda^2 = {shown(square)} is not the square of an integer: a loop about a "
+                              "pole multiplies a solution by e^(2 pi i Lambda) != 1", method)
     exponents = f"0, +-{root}" if root else "0, 0, 0"
     if root % 2:
         return LocalBehaviour("meromorphic", lambda_squared, root, exponents,
-                              f"Lambda = {root} is odd: the spinor's local monodromy M has trace 0, M^2 = -I, and the "
-                              "Poisson solutions are single-valued, hence meromorphic, at every pole")
+                              f"{why_uv} and Lambda = {root} is odd: the spinor's local monodromy M has trace 0, M^2 = -I, "
+                              "and the Poisson solutions are single-valued, hence meromorphic, at every pole", method)
     return LocalBehaviour("logarithmic", lambda_squared, root, exponents,
-                          f"Lambda = {root} is even: Gauss's A = 1 + iU/2 and B = -iU/2 are not integers, so the integer "
-                          "exponent difference brings a logarithm at every pole")
+                          f"{why_uv} and Lambda = {root} is even: Gauss's A = 1 + iU/2 and B = -iU/2 are not integers, so "
+                          "the integer exponent difference brings a logarithm at every pole", method)

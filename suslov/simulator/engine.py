@@ -186,6 +186,19 @@ def step_galois_monodromy(run: Run):
 GALOIS_DIGITS = 20
 
 
+def step_local_behaviour(run: Run):
+    """Meromorphic, logarithmic or branching at the poles of omega, decided exactly for the body as written (the
+    certified theorem for every p: :func:`suslov.simulator.exact.local_behaviour`)."""
+    from suslov.simulator import exact
+
+    body = run.plan.body.exact
+    decided = exact.local_behaviour(body)
+    run.results["local_behaviour"] = {"kind": decided.kind, "meromorphic": decided.meromorphic,
+                                      "logarithmic": decided.logarithmic, "Lambda": decided.Lambda,
+                                      "exponents_at_poles": decided.exponents, "reason": decided.reason,
+                                      "method": decided.method, "body": body.as_json()}
+
+
 def step_angle_integrate(run: Run):
     angle, error, sol = numeric_angle(run.plan.scene, run.plan.body)
     run.results["scattering_angle_integrated"] = {"radians": angle, "error_estimate": error,
@@ -236,6 +249,7 @@ STEPS = {
     "angle_integrate": step_angle_integrate,
     "angle_enclosure": step_angle_enclosure,
     "galois_monodromy": step_galois_monodromy,
+    "local_behaviour": step_local_behaviour,
     "sleigh_velocities": step_sleigh_velocities,
     "sleigh_path": step_sleigh_path,
 }

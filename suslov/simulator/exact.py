@@ -32,6 +32,7 @@ from suslov.kernel.validate import rational
 from suslov.kernel.validate import shown as validate_shown
 
 __all__ = ["ExactBody", "ball_entries", "enclosure", "exact_number", "from_pd", "from_tensor", "galois_group",
+           "local_behaviour",
            "of_scene_body"]
 
 
@@ -296,18 +297,13 @@ def galois_group(body: ExactBody):
 
     if body.rational:
         return validated_galois_group(*body.entries)
-    I11, I12, I22, I13, I23 = body.tensor
     method = METHOD + "; the paper's frame has irrational entries here, so read from the rotation invariants of " \
                       "the scene's exact entries"
-    det = _det_b_ab(I11, I12, I22, I13, I23)
+    det, w2 = _rotation_invariants(body)
     if det != 0:
         return GaloisGroup("SO(3,C)", False, method, "SL(2,C)",
                            f"u.v != 0: (I11 - I22) I13 I23 in the paper's frame is -det[b, A b] = {_text(-det)} != 0 "
                            "(b = (I13, I23), A the 2x2 block; rotation-invariant): not Liouvillian")
-    bb = I13 * I13 + I23 * I23
-    lam = (I13 * (I11 * I13 + I12 * I23) + I23 * (I12 * I13 + I22 * I23)) / bb
-    mu = I11 + I22 - lam
-    w2 = lam * (lam - mu) / bb
     root = isqrt((-w2).numerator) if -w2 > 0 and w2.denominator == 1 else None
     if root is not None and root * root == -w2 and root % 2 == 1:
         return GaloisGroup("reducible", True, method, "imprimitive (normaliser of a torus)",
@@ -316,6 +312,35 @@ def galois_group(body: ExactBody):
     return GaloisGroup("SO(3,C)", False, method, "SL(2,C)",
                        f"u.v = 0 (b an eigenvector of A) but w_-^2 = lam (lam - mu)/|b|^2 = {_text(w2)} is not minus the "
                        "square of an odd integer: not Liouvillian")
+
+
+def _rotation_invariants(body: ExactBody) -> tuple:
+    """(det[b, A b], w_-^2 when that determinant is 0 else None) from the scene's exact entries (rotation-invariant:
+    :func:`galois_group`'s docstring)."""
+    I11, I12, I22, I13, I23 = body.tensor
+    det = _det_b_ab(I11, I12, I22, I13, I23)
+    if det != 0:
+        return det, None
+    bb = I13 * I13 + I23 * I23
+    lam = (I13 * (I11 * I13 + I12 * I23) + I23 * (I12 * I13 + I22 * I23)) / bb
+    return det, lam * (lam - (I11 + I22 - lam)) / bb
+
+
+def local_behaviour(body: ExactBody):
+    """Meromorphic, logarithmic or branching at the poles of omega for the exact body (the certified theorem,
+    :mod:`suslov.kernel.local_behaviour`), a ``LocalBehaviour``.  Rational entries: on them; irrational ones
+    (I12 != 0): from the same rotation invariants as :func:`galois_group` (u.v = 0 iff det[b, A b] = 0, then
+    ``Lambda^2 = -w_-^2 = -lam (lam - mu)/|b|^2``), exactly in rationals."""
+    from suslov.kernel.local_behaviour import METHOD, classify
+    from suslov.validated import local_behaviour as validated_local_behaviour
+
+    if body.rational:
+        return validated_local_behaviour(*body.entries)
+    method = METHOD + "; the paper's frame has irrational entries here, so read from the rotation invariants"
+    det, w2 = _rotation_invariants(body)
+    if det != 0:
+        return classify(None, None, f"u.v != 0 (det[b, A b] = {_text(det)} != 0)", method)
+    return classify(-w2, (-w2, (0, 1)), "u.v = 0 (b an eigenvector of A)", method)
 
 
 def enclosure(body: ExactBody, dps: int):

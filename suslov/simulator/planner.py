@@ -115,9 +115,12 @@ PROVIDERS = (
     Provider("galois_group", "galois_monodromy", (), "any Suslov body", _suslov,
              lambda s, b: "the group decided exactly (Kimura on the body's Gauss equation) for the body as written "
                           "(exact; suslov.simulator.exact); one body: also the monodromy balls (suslov.validated.monodromy)"),
+    Provider("local_behaviour", "local_behaviour", (), "any Suslov body", _suslov,
+             lambda s, b: "meromorphic / logarithmic / branching at the poles of omega: the certified theorem for every "
+                          "p, decided exactly for the body as written (suslov.simulator.exact)"),
 )
 ORDER = ("omega", "contact_point", "gamma", "orientation", "integral_drift", "scattering_angle",
-         "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group")
+         "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group", "local_behaviour")
 
 
 @dataclass
@@ -133,7 +136,7 @@ class Plan:
     def explain(self) -> str:
         lines = [f"scene {self.scene.name!r} ({self.scene.path})", f"body: {describe(self.body)}"]
         exact = getattr(self.body, "exact", None)
-        if exact is not None and {"angle_enclosure", "galois_monodromy"} & set(self.names()):
+        if exact is not None and {"angle_enclosure", "galois_monodromy", "local_behaviour"} & set(self.names()):
             lines.append(f"exact effects for {exact.for_whom()}; paper-frame entries "
                          f"({', '.join(exact.entries_text())})")
         lines.append("effect graph (effect <- step [condition]; needs):")

@@ -26,12 +26,14 @@ A scene is declarative: it names the effects wanted, never the method.  Schema::
 
     [effects]
     compute = ["omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_integrated",
-               "scattering_angle_enclosure", "galois_group"]
+               "scattering_angle_enclosure", "galois_group", "local_behaviour"]
                                            # scattering_angle: a certified closed form for every body;
                                            # scattering_angle_integrated: the same angle by integrating ss
                                            # (the [numerics] integrator family), a cross-check beside it;
                                            # scattering_angle_enclosure: a rigorous ball (python-flint);
                                            # galois_group: decided exactly (Kimura; suslov.validated.galois_group)
+                                           # local_behaviour: meromorphic / logarithmic / branching at the poles
+                                           # (the theorem for every p; suslov.validated.local_behaviour)
     figures = ["omega_plane", "gamma_components", "basis_sphere"]
     figures_format = ["png", "pdf"]        # optional, default ["png"]; also "svg"
 
@@ -73,7 +75,7 @@ from suslov.simulator.scene_errors import SceneError
 from suslov.simulator.sweep_spec import parse_sweep
 
 EFFECTS = ("omega", "gamma", "orientation", "integral_drift", "scattering_angle", "scattering_angle_integrated",
-           "scattering_angle_enclosure", "contact_point", "galois_group")
+           "scattering_angle_enclosure", "contact_point", "galois_group", "local_behaviour")
 FIGURES = {  # figure -> effect it draws
     "omega_plane": "omega",
     "gamma_components": "gamma",
@@ -356,7 +358,8 @@ def parse_scene(data: dict, path=None) -> Scene:
     if ("body" in data) == ("sweep" in data):
         raise SceneError(path, "body", "give exactly one of [body] (one body) or [sweep] (many)")
     wanted = data.get("effects", {}).get("compute", []) if isinstance(data.get("effects"), dict) else []
-    exact = isinstance(wanted, list) and any(e in ("galois_group", "scattering_angle_enclosure") for e in wanted)
+    exact = isinstance(wanted, list) and any(e in ("galois_group", "scattering_angle_enclosure", "local_behaviour")
+                                             for e in wanted)
     sweep = parse_sweep(path, data["sweep"], keep_written=exact) if "sweep" in data else None
     body = None if sweep else _body(path, _table(path, data, "body", ("kind", "inertia", "p", "d", "mass", "offset")))
     motion = _table(path, data, "motion", ("time", "samples", "energy", "initial", "gamma0", "speed"))
