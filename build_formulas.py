@@ -19,12 +19,17 @@ before anything is moved into place.  The last file written is the manifest ``SH
 Exit status: 0 success; 1 a certificate failed (the claim is named; the output
 directory is left as it was) or ``--verify`` found a discrepancy (or unreadable certificates);
 2 bad command line, or an output path that is not the build's to replace (a file, a directory
-with other content, an unwritable place: refused before any work, see ``suslov/outdir.py``);
-3 ``--check`` found differences.
+with other content, an unwritable place: refused before any work, see ``suslov/outdir.py``), or an output or
+the certificate cache that cannot be written (a full disk: one line naming the path and the reason, the previous
+output intact); 3 ``--check`` found differences; 130 interrupted (Ctrl-C, from the first line on).
 """
 from __future__ import annotations
 
+import signal
 import sys
+
+# the line derivations.output.cli.run prints for a Ctrl-C during the build, here for one during the imports
+INTERRUPTED = "build_formulas.py: interrupted; nothing was replaced (an output is swapped in whole or not at all)"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -35,11 +40,19 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def run(argv: list[str] | None = None) -> int:
-    """:func:`main`, with Ctrl-C reported in one line (``derivations.output.cli.run``)."""
-    from derivations.output.cli import run as build
-
+    """:func:`main`, with Ctrl-C reported in one line (``derivations.output.cli.run``), also during the imports
+    (SymPy and the derivations take about a second): nothing has been written then either."""
+    try:
+        from derivations.output.cli import run as build
+    except KeyboardInterrupt:
+        print(INTERRUPTED, file=sys.stderr)
+        return 130
     return build(argv)
 
 
 if __name__ == "__main__":   # the build's worker processes import this file too: nothing heavy above
+    # First, before any import that takes time: a background job (`cmd &` in a script) starts with SIGINT
+    # ignored, and a `kill -INT` sent during the imports was lost (issue 44).  Standard library only here
+    # (suslov.interrupts.listen_for_interrupts does the same after importing the suslov package).
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     sys.exit(run())

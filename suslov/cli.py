@@ -17,6 +17,7 @@ import tomllib
 from pathlib import Path
 
 from suslov.extras import require
+from suslov.interrupts import listen_for_interrupts
 
 
 def scenes_dir() -> Path:
@@ -40,14 +41,27 @@ def _list_scenes(args) -> int:
         if target.exists() and not target.is_dir():
             print(f"suslov: error: scenes --copy {target}: exists and is not a directory", file=sys.stderr)
             return 2
-        target.mkdir(parents=True, exist_ok=True)
         clashes = [name for name in files if (target / f"{name}.toml").exists()]
         if clashes:
             print(f"suslov: error: scenes --copy {target}: would overwrite {', '.join(clashes)}.toml; nothing copied",
                   file=sys.stderr)
             return 2
-        for path in files.values():
-            shutil.copyfile(path, target / path.name)
+        copied, created = [], not target.exists()
+        try:
+            target.mkdir(parents=True, exist_ok=True)
+            for path in files.values():
+                copied.append(target / path.name)
+                shutil.copyfile(path, copied[-1])
+        except OSError as error:   # a full disk: no scene half-copied, none of this run's copies left
+            from suslov.outdir import write_failure   # here: the console script imports this module before main()
+
+            for done in copied:
+                done.unlink(missing_ok=True)
+            if created and target.is_dir() and not any(target.iterdir()):
+                target.rmdir()
+            failed = write_failure(error, copied[-1] if copied else target)
+            print(f"suslov: error: scenes --copy {target}: {failed}; nothing copied", file=sys.stderr)
+            return 2
         print(f"copied {len(files)} scenes to {target}")
         return 0
     width = max(map(len, files))
@@ -83,7 +97,23 @@ def parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    args = parser().parse_args(argv)
+    """The ``suslov`` command (console script and ``python -m suslov``): exit status as in the module docstring.
+
+    Ctrl-C is heard from here on, before the subcommands' heavy imports (NumPy, SciPy, heyoka, matplotlib:
+    about a second): a background job (``suslov simulate ... &`` in a script) starts with SIGINT ignored, and
+    a ``kill -INT`` sent during those imports was lost (issue 44)."""
+    listen_for_interrupts()
+    copying = False
+    try:
+        args = parser().parse_args(argv)
+        copying = args.command == "scenes" and args.copy is not None
+        return _command(args)
+    except KeyboardInterrupt:   # simulate_command reports its own (what a sweep kept); this is before it
+        print("suslov: interrupted" + ("" if copying else "; nothing was written"), file=sys.stderr)
+        return 130
+
+
+def _command(args) -> int:
     if args.command == "scenes":
         return _list_scenes(args)
     try:

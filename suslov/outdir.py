@@ -26,6 +26,8 @@ Rules
   the path.  Where the exchange is not available (another OS, a file system without it), a journal
   ``.NAME.suslov-swap`` is written before the two renames; the next run that touches the path
   finishes the swap (the new tree is complete) or rolls it back (see :func:`recover`).
+* **Failed writes.**  A write that fails half-way (a full disk: ``ENOSPC``) removes its staging tree; the
+  path keeps the previous tree; :func:`write_failure` is the command lines' one-line report of it.
 * **Stale staging.**  Staging and discarded trees are named ``.NAME.suslov-{new,old}-PID-XXXX``; a run
   removes those of processes that no longer exist (never another live run's, never a foreign name).
 * **Permissions.**  Directories are created with mode 0o777 and files by ``open``: the user's
@@ -50,7 +52,8 @@ _RENAME_EXCHANGE = 2
 _AT_FDCWD = -100
 
 __all__ = ["MARKER", "OutputRefused", "claim", "writable_directory", "recover", "new_staging", "swap_in", "staged",
-           "remove_stale", "make_dir"]
+           "remove_stale", "make_dir", "discard_own", "discard_own_staging",
+           "write_failure"]
 
 
 class OutputRefused(ValueError):
@@ -272,8 +275,48 @@ def new_staging(target, tool: str) -> Path:
     recover(target)
     staging = _name(target, "new")
     os.mkdir(staging, 0o777)
-    (staging / MARKER).write_text(json.dumps({"tool": tool}) + "\n", encoding="utf-8")
+    try:
+        (staging / MARKER).write_text(json.dumps({"tool": tool}) + "\n", encoding="utf-8")
+    except BaseException:   # a full disk fails already here, before the callers' clean-up starts
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
     return staging
+
+
+def discard_own(directory, prefix: str) -> list[Path]:
+    """Remove ``directory/PREFIX-PID-*`` of this process (a write that failed half-way, e.g. on a full disk, where
+    no clean-up block removed it); returns them.  Other processes' entries are left alone."""
+    start = f"{prefix}-{os.getpid()}-"
+    removed = []
+    try:
+        entries = [entry for entry in Path(directory).iterdir() if entry.name.startswith(start)]
+    except OSError:
+        return removed
+    for entry in entries:
+        if entry.is_dir() and not entry.is_symlink():
+            shutil.rmtree(entry, ignore_errors=True)
+        else:
+            entry.unlink(missing_ok=True)
+        removed.append(entry)
+    return removed
+
+
+def discard_own_staging(target) -> list[Path]:
+    """Remove the staging trees this process made beside ``target`` and left there (:func:`discard_own`)."""
+    target = Path(os.path.abspath(target))
+    return discard_own(target.parent, f".{target.name}.suslov-new")
+
+
+def write_failure(error: OSError, path) -> str:
+    """One line for ``error`` met while writing ``path``: the file the system named (else ``path``) and the
+    reason with its errno, e.g. ``/data/out: No space left on device [Errno 28 ENOSPC]``; no traceback.
+
+    Of two files (a copy's or a rename's source and destination) the destination is named: that is the one
+    written."""
+    where = next((name for name in (error.filename2, error.filename) if name is not None), path)
+    reason = error.strerror or str(error) or type(error).__name__
+    code = f" [Errno {error.errno} {errno.errorcode.get(error.errno, '?')}]" if error.errno is not None else ""
+    return f"{where}: {reason}{code}"
 
 
 def _exchange(a: Path, b: Path) -> bool:

@@ -79,7 +79,7 @@ def test_sigint_stops_a_large_build(tmp_path):
     out = tmp_path / "out"
     # interrupted inside the residue stage's per-p phase (worker processes running)
     code, left, stderr = _interrupt([sys.executable, "build_formulas.py", "--pmax", "201", "--no-cache",
-                                     "--out", str(out)], "[3/13] kovalevskaya:", env)
+                                     "--out", str(out)], "] kovalevskaya:", env)
     assert code == 130, stderr[-2000:]
     assert left == [], left
     assert "interrupted; nothing was replaced" in stderr
@@ -116,7 +116,7 @@ def test_sigint_stops_a_sweep(tmp_path):
 def test_sigint_stops_load_formulas_and_its_build(tmp_path):
     env = dict(os.environ, SUSLOV_DATA_DIR=str(tmp_path / "store"), SUSLOV_CACHE_DIR=str(tmp_path / "cache"))
     code, left, stderr = _interrupt([sys.executable, "-c", "import suslov; suslov.load_formulas(pmax=61)"],
-                                    "[3/13] kovalevskaya:", env, ignored=False)
+                                    "] kovalevskaya:", env, ignored=False)
     assert code != 0 and "KeyboardInterrupt" in stderr, stderr[-2000:]
     assert left == [], left
     store = tmp_path / "store"

@@ -50,11 +50,26 @@ LIBRARIES = ("sympy", "symengine", "mpmath", "python-flint", "numpy", "jinja2", 
 BUILD_SOURCES = ((ROOT, "derivations"), (SUSLOV_PARENT, "suslov"), (ROOT, "templates"), (ROOT, "build_formulas.py"))
 
 
+_TRUSTED_ROOTS: set = set()
+
+
 def cache_root() -> Path:
-    """``$SUSLOV_CACHE_DIR``, else the platform's per-user cache directory (platformdirs)."""
+    """``$SUSLOV_CACHE_DIR``, else the platform's per-user cache directory (platformdirs).
+
+    Refused (``suslov.manifest.UntrustedCache``, a ValueError naming the path) when another user can write it, its
+    contents or a directory above it: the build unpickles per-p results and installs trees from it (the rule of
+    the per-user store, docs/trust.md).  Checked once per directory and process.
+    """
+    from suslov.manifest import refuse_shared_cache
+
     if os.environ.get("SUSLOV_CACHE_DIR"):
-        return Path(os.environ["SUSLOV_CACHE_DIR"])
-    return Path(platformdirs.user_cache_dir("suslov-certified", appauthor=False))
+        root = Path(os.environ["SUSLOV_CACHE_DIR"])
+    else:
+        root = Path(platformdirs.user_cache_dir("suslov-certified", appauthor=False))
+    if root not in _TRUSTED_ROOTS:
+        refuse_shared_cache(root)
+        _TRUSTED_ROOTS.add(root)
+    return root
 
 
 @functools.cache

@@ -19,7 +19,7 @@ import tempfile
 from pathlib import Path
 
 import suslov.manifest as manifest
-from derivations.core.cache import TreeCache, build_key
+from derivations.core.cache import TreeCache, build_key, cache_root, per_p_store
 from derivations.core.certificates import CertificationFailure
 from derivations.core.options import BALL_CHECKS, PMAX_LIMIT, BuildOptions
 from derivations.output.estimate import Calibration, estimate_seconds, predicted_seconds
@@ -38,13 +38,14 @@ from derivations.output.pipeline import (
 )
 from derivations.registry import DERIVATIONS
 from suslov.executor import (
+    TMP_PREFIX,
     SchedulerError,
     check_reachable,
     scheduler_address,
     worker_limit,
 )
 from suslov.interrupts import listen_for_interrupts
-from suslov.outdir import OutputRefused, writable_directory
+from suslov.outdir import OutputRefused, discard_own, discard_own_staging, writable_directory, write_failure
 
 
 def _pmax(text: str) -> int:
@@ -144,7 +145,8 @@ def verify_tree(directory: Path, pmax: int | None, quiet: bool) -> int:
         print(f"build_formulas.py: --verify {directory}: no suslov_formulas.py there", file=sys.stderr)
         return 2
     try:   # a tree whose certificates cannot be read is refused, whatever the flags
-        document = json.loads((directory / "certificates.json").read_text(encoding="utf-8"))
+        # a regular file only: a FIFO planted as certificates.json must not block --verify
+        document = json.loads(manifest.read_regular(directory / "certificates.json").decode("utf-8"))
         stated = document["pmax"]
         if not isinstance(stated, int) or not isinstance(document["certificates"], list):
             raise ValueError("pmax or certificates of the wrong type")
@@ -286,6 +288,16 @@ def main(argv: list[str] | None = None) -> int:
     except SchedulerError as exc:
         print(f"build_formulas.py: {exc}; nothing was written", file=sys.stderr)
         return 2
+    except OSError as error:   # the build itself writes only the per-p certificate cache (a full disk, a read-only home)
+        unchanged = "" if target is None else f" ({target} is unchanged)"
+        if use_cache:
+            discard_own(per_p_store().directory, TMP_PREFIX)   # this run's half-written entry, if any
+            print(f"build_formulas.py: cannot write the certificate cache: {write_failure(error, cache_root())}; "
+                  f"nothing was written{unchanged}; --no-cache builds without it", file=sys.stderr)
+        else:
+            print(f"build_formulas.py: {write_failure(error, 'a file of the build')}; nothing was written{unchanged}",
+                  file=sys.stderr)
+        return 2
     if args.check:
         reference = target
         with tempfile.TemporaryDirectory(prefix="suslov-check-") as tmp:
@@ -340,9 +352,22 @@ def _from_cache(key: str, target, args) -> int | None:
             install_tree(entry, Path(tmp) / "generated")
             differing = compare_trees(Path(tmp) / "generated", target)
         return _check_verdict(target, differing, f"the build {note}")
-    install_tree(entry, target)
-    (Path(target) / "cache_report.json").write_text(json.dumps({"whole build": "from the cache", "key": key},
-                                                               indent=1) + "\n", encoding="utf-8")
+    try:
+        install_tree(entry, target)
+    except OSError as error:   # a full disk: the staging is removed, the previous output stays
+        discard_own_staging(target)
+        print(f"build_formulas.py: cannot write the output: {write_failure(error, target)}; {target} is unchanged",
+              file=sys.stderr)
+        return 2
+    report = Path(target) / "cache_report.json"   # volatile (not in SHA256SUMS): written after the swap, whole or not
+    partial = report.with_name(f".cache_report.json.{os.getpid()}")
+    try:
+        partial.write_text(json.dumps({"whole build": "from the cache", "key": key}, indent=1) + "\n", encoding="utf-8")
+        os.replace(partial, report)
+    except OSError as error:
+        partial.unlink(missing_ok=True)
+        print(f"build_formulas.py: note: {target} is complete; its cache_report.json was not written: "
+              f"{write_failure(error, report)}", file=sys.stderr)
     print(f"wrote {target} {note}")
     return _pdf(args, target)
 
@@ -359,8 +384,13 @@ def _write(build, target: Path) -> int:
     """
     try:
         write_atomically(build, target)
-    except (OutputRefused, OSError) as error:
+    except OutputRefused as error:
         print(f"build_formulas.py: cannot write {target}: {error}; {target} is unchanged", file=sys.stderr)
+        return 2
+    except OSError as error:   # a full disk (ENOSPC), a quota, a read-only remount: nothing half-written is left
+        discard_own_staging(target)
+        print(f"build_formulas.py: cannot write the output: {write_failure(error, target)}; {target} is unchanged",
+              file=sys.stderr)
         return 2
     except CertificationFailure as failure:
         print(f"build_formulas.py: {failure}", file=sys.stderr)
@@ -376,7 +406,11 @@ def _write_and_cache(build, target: Path, key, quiet: bool) -> int:
     if status:
         return status
     if key is not None:
-        TreeCache().store(key, target, keep=lambda name: not is_byproduct(name))
+        try:
+            TreeCache().store(key, target, keep=lambda name: not is_byproduct(name))
+        except OSError as error:   # the output is complete: a cache that cannot take a copy only costs time later
+            print(f"build_formulas.py: note: the build was not kept in the certificate cache: "
+                  f"{write_failure(error, TreeCache().root)}", file=sys.stderr)
     _summary(build, quiet)
     return 0
 
@@ -390,4 +424,11 @@ def run(argv: list[str] | None = None) -> int:
         print("build_formulas.py: interrupted; nothing was replaced (an output is swapped in whole or not at all)",
               file=sys.stderr)
         return 130
+    except manifest.UntrustedCache as error:   # a cache other users can write: refused before it is read
+        print(f"build_formulas.py: {error}; nothing was written", file=sys.stderr)
+        return 2
+    except OSError as error:   # any other place a full disk or a vanished directory is met: one line, no traceback
+        print(f"build_formulas.py: {write_failure(error, 'a file of the build')}; nothing was replaced (an output is "
+              "swapped in whole or not at all)", file=sys.stderr)
+        return 2
 

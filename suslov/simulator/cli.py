@@ -15,9 +15,9 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from suslov.executor import SchedulerError, scheduler_address, worker_limit
+from suslov.executor import TMP_PREFIX, SchedulerError, scheduler_address, worker_limit
 from suslov.interrupts import listen_for_interrupts
-from suslov.outdir import OutputRefused
+from suslov.outdir import OutputRefused, discard_own, write_failure
 from suslov.simulator.api import simulate
 from suslov.simulator.outputs import check_out
 from suslov.simulator.planner import make_plan
@@ -61,7 +61,7 @@ def simulate_command(args) -> int:
     files = []
     try:
         status = _guarded(f"scene {scene.path}",
-                          lambda: files.extend(simulate(scene, out=args.out, progress=progress).files))
+                          lambda: files.extend(simulate(scene, out=args.out, progress=progress).files), args.out)
     except KeyboardInterrupt:
         print("suslov: interrupted; nothing was written", file=sys.stderr)
         return 130
@@ -70,15 +70,19 @@ def simulate_command(args) -> int:
     return status
 
 
-def _guarded(what: str, action) -> int:
-    """Run ``action``; map bad output directories and schedulers to 2, failed computations to 1."""
+def _guarded(what: str, action, out) -> int:
+    """Run ``action``; map bad output directories (``out``) and schedulers to 2, failed computations to 1."""
     try:
         action()
     except (OutputRefused, SchedulerError, LargeSweep) as exc:
         print(f"suslov: error: {exc}", file=sys.stderr)
         return 2
     except OSError as exc:   # the output cannot be written (read-only file system, disk full): bad output place
-        print(f"suslov: error: {what}: cannot write the output: {exc}", file=sys.stderr)
+        # one line naming the path (the file the system named, else --out) and the reason; the output is staged
+        # and swapped in whole (suslov.outdir), so a previous output at --out is unchanged
+        kept = f" (the previous output {out} is unchanged)" if Path(out).is_dir() else ""
+        print(f"suslov: error: {what}: cannot write the output: {write_failure(exc, out)}; nothing was written{kept}",
+              file=sys.stderr)
         return 2
     except (RuntimeError, ArithmeticError, ValueError) as exc:
         print(f"suslov: error: {what}: computation failed: {exc}", file=sys.stderr)
@@ -98,14 +102,28 @@ def _sweep(scene, args, progress) -> int:
     try:
         status = _guarded(f"sweep {scene.path}", lambda: outcome.append(
             simulate(scene, out=args.out, scheduler=scheduler, workers=args.workers, progress=progress,
-                     confirmed=args.yes)))
+                     confirmed=args.yes)), args.out)
     except KeyboardInterrupt:
         print(f"suslov: interrupted: {_kept(chunk_dir(Path(args.out)))}", file=sys.stderr)
         return 130
+    if status:
+        _tidy_chunks(chunk_dir(Path(args.out)))
     if status == 0 and progress:
         progress(f"sweep of {len(scene.sweep)} points done in {outcome[0].steps[0]['seconds']:.1f} s; "
                  f"wrote {args.out}")
     return status
+
+
+def _tidy_chunks(chunks: Path) -> None:
+    """After a failed sweep (a full disk): no half-written chunk file of this run, no empty chunk store; the
+    finished chunks stay for the resumed run."""
+    if not chunks.is_dir():
+        return
+    discard_own(chunks, TMP_PREFIX)
+    try:
+        chunks.rmdir()   # only when empty
+    except OSError:
+        pass
 
 
 def _kept(chunks: Path) -> str:

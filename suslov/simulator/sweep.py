@@ -48,17 +48,21 @@ from suslov.simulator.body import make_body
 from suslov.simulator.engine import general_angle, numeric_angle
 from suslov.simulator.exact import from_pd, from_tensor
 from suslov.simulator.planner import point_steps
+from suslov.simulator.sweep_cost import output_seconds
 from suslov.simulator.sweep_outputs import columns_of, spread_source, write_sweep_outputs
 from suslov.simulator.sweep_spec import tensor_of
 
 SAMPLE_FOR_EXPLAIN = 20_000
-# seconds per point and step, measured by bench/bench_simulator.py on the 2-core machine (rounded up);
-# angle_general_closed_form: one scalar call per point, 150 us measured under load 2 (Theorem 5.2's: 48 us),
-# 292 us in bench/results/general_angle.md (its 1 us per body is the vectorised call, not the sweep's)
-COST = {"galois_monodromy": 0.3, "angle_closed_form": 3e-5, "angle_general_closed_form": 2e-4,
-        "angle_integrate:taylor": 5e-4, "angle_integrate:scipy": 2.0, "angle_enclosure": 0.3, "refused": 2e-5}
+# seconds per point and step (evaluate_point, warm, one process) on the 2-core machine under load 3, rounded up:
+# Theorem 5.2 48 us, the closed form of every body 158 us, a refused point 37 us, Taylor with the closed form
+# 511 us, the exact Galois group 174-247 us, the ball 274 us (issue 44; the last two were 0.3 s when they were
+# monodromy balls).  --explain and --quiet use them; a sweep with progress lines times its own points.
+COST = {"galois_monodromy": 3e-4, "angle_closed_form": 5e-5, "angle_general_closed_form": 2e-4,
+        "angle_integrate:taylor": 5e-4, "angle_integrate:scipy": 2.0, "angle_enclosure": 4e-4, "refused": 4e-5}
 CALIBRATION_SECONDS = 1.5   # at most this long timing sample points before a sweep with progress lines
-CALIBRATION_POINTS = 3
+CALIBRATION_POINTS = 3      # timed per class of points at least (budget allowing) ...
+CALIBRATION_MAX = 50        # ... and up to this many while a class has taken less than CALIBRATION_CLASS seconds:
+CALIBRATION_CLASS = 0.1     # three calls of 50 us time the clock and the caches, not the point
 WORKER_START = 1.0   # seconds to start a worker process (imports 0.4 s, Taylor compilation 0.5 s)
 ENCLOSURE_DIGITS = 15
 GALOIS_DIGITS = 20
@@ -78,13 +82,15 @@ class SweepPlan:
     measured: dict | None = None   # class -> seconds per point, timed on sample points (measure_costs)
     startup: float = WORKER_START  # seconds before a worker's first chunk finishes its first point
     free_cores: float | None = None   # cores not busy with other work when measured (os.getloadavg)
+    outputs: bool = True   # the outputs are written (suslov simulate --out): their cost is part of the estimate
 
     def point_cost(self, steps: tuple) -> float:
         if self.measured and steps in self.measured:
             return self.measured[steps]
         return sum(COST[_cost_key(s, self.scene.method)] for s in steps)
 
-    def estimate(self) -> float:
+    def compute_estimate(self) -> float:
+        """Seconds to compute the points (in parallel on the workers), worker start-up included."""
         total = 0.0
         for steps, count in self.classes.items():
             total += count * self.point_cost(steps)
@@ -92,6 +98,23 @@ class SweepPlan:
         if self.free_cores is not None and not self.scheduler:
             parallel = max(1.0, min(parallel, self.free_cores))
         return total / parallel + (self.startup if self.workers > 1 or self.scheduler else 0.0)
+
+    def output_estimate(self) -> float:
+        """Seconds to write the outputs in this process (:mod:`suslov.simulator.sweep_cost`); 0 without outputs.
+        The figures' undefined cells dominate a sweep of refused points (60x the computation, issue 44)."""
+        return output_seconds(self.scene, self.classes.get(("refused",), 0)) if self.outputs else 0.0
+
+    def estimate(self) -> float:
+        """Seconds of the whole sweep from here: computing the points, then writing the outputs."""
+        return self.compute_estimate() + self.output_estimate()
+
+    def estimate_text(self) -> str:
+        """"about 12.3 s", with its parts when writing the outputs takes half a second and a fifth of the computing
+        or more."""
+        compute, output = self.compute_estimate(), self.output_estimate()
+        shown = output >= max(0.5, 0.2 * compute)
+        parts = f" (computing {compute:.1f} s, writing the outputs {output:.1f} s)" if shown else ""
+        return f"about {compute + output:.1f} s{parts}"
 
     def explain(self) -> str:
         sw = self.scene.sweep
@@ -107,7 +130,7 @@ class SweepPlan:
         where = (f"Dask scheduler {self.scheduler}" if self.scheduler
                  else f"local processes, {self.workers} worker{'s' if self.workers > 1 else ''}")
         lines.append(f"executor: {where}; {self.chunks} chunks of up to {self.chunk} points")
-        lines.append(f"estimated cost: about {self.estimate():.1f} s")
+        lines.append(f"estimated cost: {self.estimate_text()}")
         return "\n".join(lines)
 
 
@@ -164,7 +187,7 @@ def plan_sweep(scene, workers: int | None = None, scheduler: str | None = None) 
     auto = workers is None
     workers = executor.default_workers() if auto else max(1, workers)
     plan = SweepPlan(scene, classes, sampled, 1, 1, 1, scheduler)
-    if auto and not scheduler and plan.estimate() < 2 * WORKER_START:
+    if auto and not scheduler and plan.compute_estimate() < 2 * WORKER_START:
         workers = 1   # starting processes would cost more than the work
     parallel = 4 if scheduler else workers
     chunk = sw.chunk or max(min(n, 16), min(2000, math.ceil(n / (8 * parallel))))
@@ -350,14 +373,16 @@ def check_size(scene, plan: SweepPlan, confirmed: bool) -> None:
 
 def measure_costs(scene, budget: float = CALIBRATION_SECONDS) -> tuple[dict, int, float]:
     """(class -> seconds per point, points timed, seconds of the first calls): each class of points timed
-    here on up to ``CALIBRATION_POINTS`` sample points, after one untimed call (compilation, caches: what
-    every worker pays once), within about ``budget`` seconds after those.  The table ``COST`` is a guess
-    from another machine and another load; a sweep of 5043 integrations announced 19 s and took 112 s."""
+    here on ``CALIBRATION_POINTS`` sample points at least, and on up to ``CALIBRATION_MAX`` while the class has
+    taken less than ``CALIBRATION_CLASS`` seconds (cheap points vary more than their mean), after one untimed call
+    (compilation, caches: what every worker pays once), within about ``budget`` seconds after those.  The table
+    ``COST`` is a guess from another machine and another load; a sweep of 5043 integrations announced 19 s and
+    took 112 s.  Writing the outputs is not timed here: :mod:`suslov.simulator.sweep_cost` counts it."""
     sw, options = scene.sweep, _options(scene)
     samples: dict = {}
     for i in np.random.default_rng(0).permutation(len(sw))[:SAMPLE_FOR_EXPLAIN]:
         indices = samples.setdefault(classify(sw.point(int(i)), options), [])
-        if len(indices) < CALIBRATION_POINTS + 1:
+        if len(indices) < CALIBRATION_MAX + 1:
             indices.append(int(i))
     measured, timed, first, start = {}, 0, 0.0, time.perf_counter()
     for steps, indices in samples.items():
@@ -371,6 +396,8 @@ def measure_costs(scene, budget: float = CALIBRATION_SECONDS) -> tuple[dict, int
             evaluate_point(sw.point(i), options, sw.written_point(i))
             count += 1
             if time.perf_counter() - start - first > budget:
+                break
+            if count >= CALIBRATION_POINTS and time.perf_counter() - begin > CALIBRATION_CLASS:
                 break
         if count:
             measured[steps] = (time.perf_counter() - begin) / count
@@ -388,13 +415,17 @@ def free_cores() -> float | None:
 
 
 def compute_sweep(scene, plan: SweepPlan, store=None, progress=None) -> tuple[dict, float, int]:
-    """Every point of ``plan`` (chunks ``store`` holds are not recomputed): (table, seconds, chunks computed)."""
+    """Every point of ``plan`` (chunks ``store`` holds are not recomputed): (table, seconds, chunks computed).
+
+    The chunk store lives beside the output directory (:func:`chunk_dir`): without one (``suslov.simulate``
+    without ``out``) no outputs follow, and the announced estimate leaves them out."""
+    plan.outputs = store is not None
     if progress:
         plan.measured, timed, first = measure_costs(scene)
         plan.startup, plan.free_cores = WORKER_START + first, free_cores()
         busy = "" if plan.free_cores is None else f", {max(0.0, plan.free_cores):.1f} of {os.cpu_count()} cores free"
-        basis = f"timed on {timed} sample points here{busy}" if timed else "from the cost table"
-        progress(f"{len(scene.sweep)} points in {plan.chunks} chunks; estimated {plan.estimate():.1f} s ({basis})")
+        basis = f"points timed on {timed} samples here{busy}" if timed else "points from the cost table"
+        progress(f"{len(scene.sweep)} points in {plan.chunks} chunks; estimated {plan.estimate_text()} ({basis})")
     tasks, keys = chunk_tasks(scene, plan.chunk)
     start = time.perf_counter()
     results, computed = executor.run_chunks(evaluate_chunk, tasks, keys, store=store, scheduler=plan.scheduler,

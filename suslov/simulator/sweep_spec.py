@@ -184,7 +184,9 @@ def read_bodies_csv(path: Path, scene_path, keep_written: bool = False) -> tuple
     binary value ("0.3", not "0.5"); None when no cell is, or when not asked."""
     if not path.is_file():
         raise _error(scene_path, "sweep.bodies", f"{path}: file not found")
-    with path.open(newline="", encoding="utf-8") as handle:
+    # utf-8-sig: a byte-order mark (Excel's "CSV UTF-8", Notepad) is dropped instead of becoming part of the first
+    # column's name ("\ufeffI11", refused as "missing column 'I11'"); a file without one reads as plain UTF-8
+    with path.open(newline="", encoding="utf-8-sig") as handle:
         reader = csv.reader(handle)
         try:
             header = [h.strip() for h in next(reader)]
