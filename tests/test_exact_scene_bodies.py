@@ -189,3 +189,18 @@ def test_bad_decimal_strings_name_the_field(tmp_path, value, message):
                      '[effects]\ncompute = ["galois_group"]\n')
     with pytest.raises(SceneError, match=f"body.d.*{message}"):
         load_scene(scene)
+
+
+def test_negligible_i13_with_i23_zero_is_the_mirror_case_not_a_division_by_zero():
+    """I13 = 1e-9, I23 = 0 (the mirror case I23 = 0 of eq:lina, near but not at the equilibrium) was read as the
+    case I13 = 0 and divided by I23 = 0 (ZeroDivisionError, which ended a whole sweep)."""
+    import math
+
+    import suslov
+
+    result = suslov.simulate({"body": {"inertia": [[2, 0, 1e-9], [0, 1, 0], [1e-9, 0, 3]]},
+                              "motion": {"time": [-1, 1], "samples": 3},
+                              "effects": {"compute": ["scattering_angle", "local_behaviour"]}})
+    assert math.isfinite(result.results["scattering_angle"]["radians"])
+    # exactly: p^2 = I11 (I22 - I11)/I13^2 < 0 in the mirror case: Lambda is not real, the poles branch
+    assert result.results["local_behaviour"]["kind"] == "branching"

@@ -59,6 +59,7 @@ def main(argv=None) -> int:
         args.append("--install")   # an installed copy has no generated/ of its own to overwrite
     if str(root) not in sys.path:
         sys.path.insert(0, str(root))
-    from derivations.output.cli import main as cli_main
+    # run, not main: Ctrl-C, an untrusted cache and a full disk end in one line, as from build_formulas.py
+    from derivations.output.cli import run as cli_run
 
-    return cli_main(args)
+    return cli_run(args)

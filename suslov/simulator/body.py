@@ -110,7 +110,8 @@ def make_body(tensor=None, p=None, d=None, energy=None, tol=1e-9, exact=None) ->
     tensor = np.asarray(tensor, dtype=float)
     R, (I11, I22, I13, I23) = gf.canonical_frame(tensor)
     size = max(abs(I11), abs(I22), abs(I13), abs(I23))
-    special = abs(I13) <= tol * size and I11 - I22 > tol * size
+    # I13 negligible makes the case I13 = 0 only when I23 is not negligible too (else p = -I22 d/I23 divides by 0)
+    special = abs(I13) <= tol * size and I11 - I22 > tol * size and abs(I23) > tol * size
     if special:
         if I23 > 0:  # rotate the frame by pi about e3 so that p > 0
             R = R @ np.diag([-1.0, -1.0, 1.0])
@@ -123,6 +124,9 @@ def make_body(tensor=None, p=None, d=None, energy=None, tol=1e-9, exact=None) ->
     else:
         p_val = d_val = None
         D = I13 * I13 * I22 + I23 * I23 * I11
+        if not D > 0:   # I13 and I23 underflow together: float64 cannot tell this body from the equilibrium
+            raise ValueError(f"I13={I13!r}, I23={I23!r} (paper frame): I13^2 I22 + I23^2 I11 underflows to 0 in float64; "
+                             "give the entries exactly (decimal strings) for the exact effects")
         r = math.sqrt(I11 * I22)
         u = np.array([-I11 * I22 * I23 / D, I11 * I22 * I13 / D])
         v = np.array([I22 * I13 * r / D, I11 * I23 * r / D])
