@@ -118,3 +118,19 @@ def test_a_tensor_turned_about_the_constraint_axis_keeps_its_verdict():
     assert (verdict["kind"], verdict["Lambda"]) == ("meromorphic", 3)
     general = _scene_verdict({"inertia": [["2", "0.5", "0.3"], ["0.5", "1", "-0.2"], ["0.3", "-0.2", "3"]]})
     assert general["kind"] == "branching"
+
+
+def test_a_sweep_maps_the_local_behaviour_over_p_and_d(tmp_path):
+    """A (p, d) sweep: the column is 0 (meromorphic) at odd p, 1 (logarithmic) at even p, 2 (branching) between,
+    whatever d (Lambda = p for I13 = 0); the map draws the three classes."""
+    from suslov.simulator import sweep
+    from suslov.simulator.scene import load_scene
+
+    scene = tmp_path / "scene.toml"
+    scene.write_text('name = "poles"\n[sweep]\np = [1, 2, 2.5, 3, 4]\nd = [0.5, 2]\n'
+                     '[effects]\ncompute = ["local_behaviour"]\nfigures = ["map"]\n')
+    table, _, _, _ = sweep.run_sweep(load_scene(scene), tmp_path / "out", workers=1)
+    expected = {1: 0.0, 2: 1.0, 2.5: 2.0, 3: 0.0, 4: 1.0}
+    assert [expected[p] for p in table["p"]] == list(table["local_behaviour"])
+    assert all(m.split(" ")[0] in ("meromorphic", "logarithmic", "branching") for m in table["local_behaviour_method"])
+    assert (tmp_path / "out" / "map.png").is_file()

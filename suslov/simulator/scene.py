@@ -85,7 +85,8 @@ FIGURES = {  # figure -> effect it draws
 }
 SLEIGH_EFFECTS = ("omega", "contact_point")
 SLEIGH_FIGURES = ("sleigh_path",)   # the other figures draw a Suslov body's omega (paper frame) or gamma
-SWEEP_EFFECTS = ("scattering_angle", "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group")
+SWEEP_EFFECTS = ("scattering_angle", "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group",
+                 "local_behaviour")
 SWEEP_FIGURES = ("map", "histogram")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "LSODA")
 METHODS = ("taylor", *(f"scipy:{m}" for m in SCIPY_METHODS))

@@ -57,7 +57,7 @@ SAMPLE_FOR_EXPLAIN = 20_000
 # Theorem 5.2 48 us, the closed form of every body 158 us, a refused point 37 us, Taylor with the closed form
 # 511 us, the exact Galois group 174-247 us, the ball 274 us (issue 44; the last two were 0.3 s when they were
 # monodromy balls).  --explain and --quiet use them; a sweep with progress lines times its own points.
-COST = {"galois_monodromy": 3e-4, "angle_closed_form": 5e-5, "angle_general_closed_form": 2e-4,
+COST = {"galois_monodromy": 3e-4, "local_behaviour": 2e-4, "angle_closed_form": 5e-5, "angle_general_closed_form": 2e-4,
         "angle_integrate:taylor": 5e-4, "angle_integrate:scipy": 2.0, "angle_enclosure": 4e-4, "refused": 4e-5}
 CALIBRATION_SECONDS = 1.5   # at most this long timing sample points before a sweep with progress lines
 CALIBRATION_POINTS = 3      # timed per class of points at least (budget allowing) ...
@@ -68,6 +68,8 @@ ENCLOSURE_DIGITS = 15
 GALOIS_DIGITS = 20
 # the galois_group column: 0 solvable in Liouvillian functions (reducible), 1 not (SO(3,C)), NaN not decided
 GALOIS_CODES = {"reducible": 0.0, "SO(3,C)": 1.0, "unknown": math.nan, "imprimitive": 0.0, "finite": 0.0}
+# the local_behaviour column (at the poles of omega): 0 meromorphic, 1 logarithmic, 2 branching
+LOCAL_CODES = {"meromorphic": 0.0, "logarithmic": 1.0, "branching": 2.0}
 
 
 @dataclass
@@ -145,7 +147,7 @@ def _options(scene) -> dict:
             "columns": list(scene.sweep.columns)}
 
 
-EXACT_EFFECTS = ("galois_group", "scattering_angle_enclosure")
+EXACT_EFFECTS = ("galois_group", "scattering_angle_enclosure", "local_behaviour")
 
 
 def point_body(point: dict, kind: str, with_exact: bool = False, written: dict | None = None):
@@ -217,7 +219,7 @@ def _columns(effect: str, value, error, method) -> dict:
 def evaluate_point(point: dict, options: dict, written: dict | None = None) -> dict:
     """The scalar effects of one point; a point that is not a body gets its reason in ``error``.
 
-    The exact effects (galois_group, scattering_angle_enclosure) are computed for the point's numbers as
+    The exact effects (galois_group, scattering_angle_enclosure, local_behaviour) are computed for the point's numbers as
     written (``written``, else its float64 values, exactly): never for the det-normalised float entries."""
     try:
         body = point_body(point, options["kind"], any(e in EXACT_EFFECTS for e in options["effects"]), written)
@@ -234,6 +236,10 @@ def evaluate_point(point: dict, options: dict, written: dict | None = None) -> d
             result = exact.galois_group(body.exact)   # exact: Kimura's theorem on the body's Gauss equation
             row |= {"galois_group": GALOIS_CODES[result.group], "galois_group_error": 0.0,
                     "galois_group_method": f"{result.group} (exact: Kimura's theorem, {_whose(body.exact)})"}
+        if "local_behaviour" in steps:
+            decided = exact.local_behaviour(body.exact)   # exact: the meromorphy theorem for every p
+            row |= {"local_behaviour": LOCAL_CODES[decided.kind], "local_behaviour_error": 0.0,
+                    "local_behaviour_method": f"{decided.kind} (exact: the meromorphy theorem, {_whose(body.exact)})"}
         if "angle_enclosure" in steps:
             ball = exact.enclosure(body.exact, dps=ENCLOSURE_DIGITS).angle
             row |= {"scattering_angle_enclosure": float(ball.mid()),

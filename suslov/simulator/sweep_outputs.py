@@ -21,11 +21,12 @@ import numpy as np
 from suslov.simulator.outputs import REPORT, staged
 
 SCALARS = ("scattering_angle", "scattering_angle_integrated", "scattering_angle_enclosure", "galois_group",
-           "energy_spread")
+           "local_behaviour", "energy_spread")
 LABELS = {"scattering_angle": r"$\Delta\psi$ (rad)", "scattering_angle_integrated": r"$\Delta\psi$ integrated (rad)",
           "scattering_angle_enclosure": r"$\Delta\psi$ ball midpoint (rad)",
           "energy_spread": r"energy spread $\Delta\psi_{\max} - \Delta\psi_{\min}$ (rad)",
-          "galois_group": "Galois group (0: reducible, Liouvillian; 1: SO(3,C), not; white: unknown)"}
+          "galois_group": "Galois group (0: reducible, Liouvillian; 1: SO(3,C), not; white: unknown)",
+          "local_behaviour": r"At the poles of $\omega$ (0: meromorphic; 1: logarithmic; 2: branching)"}
 SPREAD_FLOOR = 1e-17   # a spread of exactly 0 (equal in every bit) is drawn at this value on the log scale
 AXIS_LABELS = {"I11": "$I_{11}$", "I22": "$I_{22}$", "I33": "$I_{33}$", "I12": "$I_{12}$", "I13": "$I_{13}$",
                "I23": "$I_{23}$", "p": "$p$", "d": "$d$"}
@@ -80,6 +81,7 @@ def _first_energy(scene, values: np.ndarray) -> np.ndarray:
 
 # two classes with distinct lightness (dark blue, light yellow: told apart in grey print too)
 GALOIS_COLOURS = ("#1f3b73", "#f2c14e")
+LOCAL_COLOURS = ("#1f3b73", "#c8553d", "#f2c14e")   # meromorphic, logarithmic, branching: distinct in grey too
 UNDEFINED = dict(facecolor="0.85", edgecolor="0.25", hatch="///", linewidth=0.0)
 
 
@@ -140,6 +142,11 @@ def map_figure(scene, table: dict):
             mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(grid), shading="nearest",
                                  cmap=ListedColormap(GALOIS_COLOURS), norm=BoundaryNorm([-0.5, 0.5, 1.5], 2))
             fig.colorbar(mesh, ax=ax, ticks=[0, 1], label="0 reducible (Liouvillian), 1 SO(3,C); white: unknown")
+        elif name == "local_behaviour":   # three classes
+            from matplotlib.colors import BoundaryNorm, ListedColormap
+            mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(grid), shading="nearest",
+                                 cmap=ListedColormap(LOCAL_COLOURS), norm=BoundaryNorm([-0.5, 0.5, 1.5, 2.5], 3))
+            fig.colorbar(mesh, ax=ax, ticks=[0, 1, 2], label="0 meromorphic, 1 logarithmic, 2 branching")
         else:   # viridis: lightness rises monotonically, so the scale reads in grey
             mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(grid), shading="nearest", norm=norm, cmap="viridis")
             fig.colorbar(mesh, ax=ax, label=label)
