@@ -14,27 +14,33 @@ from __future__ import annotations
 
 import importlib.util
 
-__all__ = ["EXTRAS", "missing", "require", "install_hint"]
+__all__ = ["EXTRAS", "FIGURES", "missing", "require", "install_hint"]
 
 EXTRAS = {
     "build": ("sympy", "symengine", "jinja2", "loky"),
     "sim": ("scipy", "matplotlib", "heyoka", "loky"),
     "dask": ("dask", "distributed"),
 }
+# what drawing or saving a simulator figure needs of [sim] (Result.plot, Result.save, simulate(out=...))
+FIGURES = ("matplotlib",)
 
 
 def install_hint(extra: str) -> str:
     return f"pip install 'suslov-certified[{extra}]'"
 
 
-def missing(extra: str) -> list[str]:
-    """The libraries of ``extra`` that cannot be imported here (empty when the extra is installed)."""
-    return [name for name in EXTRAS[extra] if importlib.util.find_spec(name) is None]
+def missing(extra: str, libraries: tuple[str, ...] | None = None) -> list[str]:
+    """The libraries of ``extra`` (or only ``libraries`` of it) that cannot be imported here (empty when
+    they are installed).  A name set to ``None`` in ``sys.modules`` counts as missing, as ``import`` says."""
+    return [name for name in (EXTRAS[extra] if libraries is None else libraries)
+            if importlib.util.find_spec(name) is None]
 
 
-def require(extra: str, what: str) -> None:
-    """``ModuleNotFoundError`` naming ``extra`` and the missing libraries when ``what`` cannot run here."""
-    absent = missing(extra)
+def require(extra: str, what: str, libraries: tuple[str, ...] | None = None) -> None:
+    """``ModuleNotFoundError`` (an ``ImportError``) naming ``extra`` and the missing libraries when ``what``
+    cannot run here.  ``libraries``: the part of the extra ``what`` needs (a figure needs matplotlib, not
+    heyoka: :data:`FIGURES`), so a partial install is refused only for what it lacks."""
+    absent = missing(extra, libraries)
     if absent:
         raise ModuleNotFoundError(f"{what} needs the [{extra}] extra ({', '.join(absent)} not installed): "
                                   f"{install_hint(extra)}", name=absent[0])

@@ -6,8 +6,8 @@ records (docs/design.md, "Certification").  A certificate names
 * the claim in words and mathematics (a :class:`~derivations.core.statement.Statement`: written
   ``"words $formula$"``, each formula a SymPy object; the JSON and the terminal print its plain
   text, the documents its LaTeX -- method and detail the same),
-* the paper's equation label (``ep3.26``, ``gen12``, ... of
-  ``shared/paper/000_c501a623748984eb.txt``), or ``derived`` for a claim the
+* the paper's equation label (``ep3.26``, ``gen12``, ... of the paper's LaTeX
+  source, arXiv:0902.0079), or ``derived`` for a claim the
   paper does not state,
 * the method (exact zero test in a named canonical domain, or numeric
   corroboration with mpmath at a stated precision),

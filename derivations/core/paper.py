@@ -1,7 +1,7 @@
 """The paper's printed formulas, transcribed once, with their equation labels.
 
-Source: ``shared/paper/000_c501a623748984eb.txt`` (Fedorov, Maciejewski,
-Przybylska, *The Poisson equations in the nonholonomic Suslov problem*).
+Source: the paper's LaTeX source, arXiv:0902.0079 (Fedorov, Maciejewski,
+Przybylska, *The Poisson equations in the nonholonomic Suslov problem*; docs/citing.md).
 Nothing here is used to *produce* an emitted formula: the derivations derive,
 then compare with these transcriptions, and the comparison goes into the
 errata table.  Each entry keeps the printed LaTeX verbatim (for the table) and

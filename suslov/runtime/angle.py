@@ -15,12 +15,14 @@ from suslov.kernel import phase
 from suslov.kernel.contexts import ARB, FLOAT, MP
 from suslov.kernel.display import Ball, MPValue
 from suslov.kernel.enclosure import to_arb
+from suslov.kernel.scalars import like_ufunc
 from suslov.kernel.validate import ball_prec, mp_dps, mp_real, real_array
 
 __all__ = ["scattering_angle", "scattering_angle_mp", "scattering_angle_ball"]
 
 
-def scattering_angle(emitted, p, d) -> np.ndarray:
+@like_ufunc
+def scattering_angle(emitted, p, d) -> np.ndarray | np.float64:
     p, d = np.broadcast_arrays(real_array("p", p), real_array("d", d, positive=True))
     s, c = phase.half_pi_parts(p)
     # p and d beyond 2^1020 both divided by 4 (exactly), so that fl(pi |p|) and 2d overflow only where x does (at

@@ -12,6 +12,7 @@ import numpy as np
 from suslov.kernel import finite
 from suslov.kernel.contexts import FLOAT, MP
 from suslov.kernel.display import MPValue
+from suslov.kernel.scalars import like_ufunc
 from suslov.kernel.validate import mp_dps, mp_real, real_array
 
 __all__ = ["full", "tensor_arrays", "branch_sign", "omega", "omega_mp", "omega_general", "omega_general_mp"]
@@ -40,6 +41,7 @@ def branch_sign(branch) -> int:
     return int(branch)
 
 
+@like_ufunc
 def omega(emitted, t, p, d) -> tuple[np.ndarray, np.ndarray]:
     """``emitted(FLOAT, t, p, d)`` on validated, broadcast arrays (scalar parameters stay scalars)."""
     t, p, d = real_array("t", t), real_array("p", p, nonzero=True), real_array("d", d, positive=True)
@@ -60,6 +62,7 @@ def omega_mp(emitted, t, p, d, dps) -> tuple:
         return MPValue(+w1, dps), MPValue(+w2, dps)
 
 
+@like_ufunc
 def omega_general(emitted, t, I11, I22, I13, I23, branch) -> tuple[np.ndarray, np.ndarray]:
     t = real_array("t", t)
     I11, I22, I13, I23 = tensor_arrays(I11, I22, I13, I23)

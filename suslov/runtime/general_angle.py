@@ -62,6 +62,7 @@ from suslov.kernel import finite, gauss_angle, phase, validate
 from suslov.kernel.contexts import ARB, FLOAT, MP
 from suslov.kernel.display import Ball, MPValue
 from suslov.kernel.enclosure import to_arb
+from suslov.kernel.scalars import like_ufunc
 from suslov.kernel.validate import ball_prec, mp_dps, mp_real, rational, real_array
 
 __all__ = ["MAX_EXTRA_BITS", "general_scattering_angle", "general_scattering_angle_ball", "general_scattering_angle_mp"]
@@ -85,7 +86,8 @@ def _equilibrium(both_zero) -> None:
                          "equilibrium (no scattering)")
 
 
-def general_scattering_angle(invariants, emitted, I11, I22, I13, I23) -> np.ndarray:
+@like_ufunc
+def general_scattering_angle(invariants, emitted, I11, I22, I13, I23) -> np.ndarray | np.float64:
     I11, I22 = real_array("I11", I11, positive=True), real_array("I22", I22, positive=True)
     I13, I23 = real_array("I13", I13), real_array("I23", I23)
     I11, I22, I13, I23 = np.broadcast_arrays(I11, I22, I13, I23)

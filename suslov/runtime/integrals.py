@@ -17,6 +17,7 @@ import numpy as np
 
 from suslov.kernel import horner
 from suslov.kernel.display import MPValue
+from suslov.kernel.scalars import like_ufunc
 from suslov.kernel.validate import mp_dps, mp_real, odd_p, rational, real_array
 from suslov.recipes.rings import IntegralRing, homogeneous_coefficients
 
@@ -73,7 +74,8 @@ def float_coefficients(core, p: int, d: float) -> tuple[np.ndarray, int]:
     return np.array([[float(v / two_E) for v in row] for row in rows]), E
 
 
-def first_integral(core, ps, p, d, omega1, omega2, gamma1, gamma2, gamma3) -> np.ndarray:
+@like_ufunc
+def first_integral(core, ps, p, d, omega1, omega2, gamma1, gamma2, gamma3) -> np.ndarray | np.float64:
     """F3 in float64 (see the generated ``first_integral`` for the formula and its error bound)."""
     p = integral_p(p, ps)
     names = ("d", "omega1", "omega2", "gamma1", "gamma2", "gamma3")

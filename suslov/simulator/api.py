@@ -27,6 +27,8 @@ from pathlib import Path
 
 import numpy as np
 
+from suslov.extras import FIGURES as FIGURE_LIBRARIES
+from suslov.extras import require
 from suslov.simulator.scene import FIGURES, Scene, SceneError, load_scene, parse_scene
 
 __all__ = ["simulate", "Result"]
@@ -72,13 +74,15 @@ class Result:
 
     def plot(self, name: str | None = None):
         """A matplotlib ``Figure`` of ``name`` (default: the scene's first figure, else the first one
-        :meth:`figures` lists); the caller shows, saves or closes it."""
+        :meth:`figures` lists); the caller shows, saves or closes it.  Needs matplotlib: without it (a core
+        install) an ``ImportError`` says to install the [sim] extra."""
         choices = self.figures()
         if name is None:
             name = (self.scene.figures or choices or [None])[0]
         if name not in choices:
             raise ValueError(f"figure {name!r}: not drawable from scene {self.scene.name!r} (its effects: "
                              f"{', '.join(self.scene.effects)}); available: {', '.join(choices) or 'none'}")
+        needs_figures("Result.plot()", [name])
         if self.scene.is_sweep:
             from suslov.simulator.sweep_outputs import sweep_figure
             return sweep_figure(name, self.scene, self.table)
@@ -87,9 +91,11 @@ class Result:
 
     def save(self, out, progress=None) -> list[str]:
         """Write the scene's outputs (data, figures, results.json, report.md) into ``out`` atomically, as
-        ``suslov simulate SCENE --out DIR`` does; returns the file names."""
+        ``suslov simulate SCENE --out DIR`` does; returns the file names.  A scene with figures needs
+        matplotlib (else an ``ImportError`` naming the [sim] extra, before anything is written)."""
         from suslov.simulator.outputs import check_out
 
+        needs_figures("Result.save()", self.scene.figures)
         check_out(out)
         if self.scene.is_sweep:
             from suslov.simulator.sweep_outputs import write_sweep_outputs
@@ -103,6 +109,15 @@ class Result:
     def __repr__(self) -> str:
         shown = ", ".join(self.keys())
         return f"<suslov Result of scene {self.scene.name!r}: {shown}>"
+
+
+def needs_figures(what: str, names) -> None:
+    """The one check before figures ``names`` are drawn (plot, save, simulate with ``out``): a core install
+    (no matplotlib) gets an ``ImportError`` naming the [sim] extra, before any work, instead of ``No module
+    named 'matplotlib'`` from inside the drawing (the figure modules import it on first use); no figure
+    needs nothing."""
+    if names:
+        require("sim", f"{what}, drawing {', '.join(names)},", FIGURE_LIBRARIES)
 
 
 def as_scene(scene) -> Scene:
@@ -138,6 +153,8 @@ def simulate(scene, *, out=None, workers: int | None = None, scheduler: str | No
     report = _reporter(progress)
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ValueError(f"workers={workers!r}: must be a positive integer")
+    if out is not None:
+        needs_figures(f"simulate(..., out={str(out)!r})", scene.figures)
     if scene.is_sweep:
         return _sweep(scene, out, workers, scheduler, report, confirmed)
     from suslov.simulator.engine import execute, write_outputs

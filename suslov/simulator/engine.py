@@ -317,9 +317,9 @@ def write_outputs(run: Run, out, progress=None) -> list[str]:
     """Write data, figures, results.json and report.md into ``out`` atomically."""
     with staged(out) as staging:
         files = _data_files(run, staging)
-        from suslov.simulator import figures  # matplotlib only when a figure is drawn
         for step in run.plan.steps:
             if step.name.startswith("figure:"):
+                from suslov.simulator import figures  # matplotlib only when a figure is drawn (none: core suffices)
                 name = step.name.split(":", 1)[1]
                 if progress:
                     progress(f"figure {name}")
