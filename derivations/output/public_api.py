@@ -33,7 +33,7 @@ SECTIONS = [
         PublicFunction(
             'omega',
             't: ArrayLike, p: ArrayLike, d: ArrayLike',
-            'tuple[np.ndarray, np.ndarray]',
+            'tuple[np.ndarray | np.float64, np.ndarray | np.float64]',
             r"""Angular velocity of the Suslov problem in the case I13 = 0 (paper: ``omegas``).
 
     Derived and certified formula (rate A = 1, energy F1 = p^2 (d^2+1)/d^2)::
@@ -46,7 +46,7 @@ SECTIONS = [
     non-zero; ``d > 0`` with ``d^2 = I11/I22 - 1``.
 
     ``t``, ``p`` and ``d`` broadcast like NumPy arrays; returns two float64 arrays of the
-    broadcast shape.  No overflow for any t.  Error bound (proven from the emitted code, rounding
+    broadcast shape (two ``np.float64`` when every argument is a scalar, as ufuncs do).  No overflow for any t.  Error bound (proven from the emitted code, rounding
     model with libm calls within 4 ulp, for every t, d in [1e-3, 1e3]): ``5e-15 |omega_i| +
     1e-300 (|p|/d) sqrt(d^2+1)`` per component (the second term where sech t underflows).
 
@@ -72,7 +72,7 @@ SECTIONS = [
         PublicFunction(
             'omega_general',
             't: ArrayLike, I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, I23: ArrayLike,\n                  branch: int = 1',
-            'tuple[np.ndarray, np.ndarray]',
+            'tuple[np.ndarray | np.float64, np.ndarray | np.float64]',
             r"""General solution of the reduced Euler equations (paper ``eq:o12``, ``c's``, corrected).
 
     Inertia tensor with I12 = 0 (frame choice), constraint axis a = (0, 0, 1); the
@@ -89,7 +89,7 @@ SECTIONS = [
         omega2 = ( I11 I22 I13 tanh t + I11 I23 r sech t) / D
 
     Any other solution is lambda omega(lambda (t - t0)).  All arguments but ``branch``
-    broadcast; returns two float64 arrays.  Error bound (proven from the emitted code, rounding
+    broadcast; returns two float64 arrays (``np.float64`` for scalar arguments).  Error bound (proven from the emitted code, rounding
     model with libm calls within 4 ulp, for every t and ``I11``, ``I22``, ``max(|I13|, |I23|)`` at
     least 1e-3 of the largest entry): absolute ``6e-15 B + 1e-300``,
     ``B = (I11 I22 |I23| + I22 |I13| r + I11 I22 |I13| + I11 |I23| r)/D``.
@@ -127,7 +127,7 @@ SECTIONS = [
         PublicFunction(
             'first_integral',
             'p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, gamma1: ArrayLike,\n                   gamma2: ArrayLike, gamma3: ArrayLike',
-            'np.ndarray',
+            'np.ndarray | np.float64',
             r"""Polynomial first integral F3 = P1 g1 + P2 g2 + P3 g3 of eq:sysfin + Poisson (odd p; Theorem 6.2).
 
     P1, P2, P3 are homogeneous of degree p in (omega1, omega2):
@@ -137,7 +137,7 @@ SECTIONS = [
     L = omega2/(d^2+1) d/domega1 - omega1 d/domega2.  (The printed eq:p23 has the wrong
     sign in P3 and pol_sol wrong coefficients: see the errata.)
 
-    ``d`` and the five state arguments broadcast; returns float64.  The coefficients are
+    ``d`` and the five state arguments broadcast; returns float64 (an array, or ``np.float64`` for scalar arguments).  The coefficients are
     computed exactly from the float d and rounded once (cached per (p, d)); evaluated as
     ``s^p sum_i P_i(omega/s) gamma_i`` with ``s = max(|omega1|, |omega2|)`` and Horner's rule in
     the ratio of modulus <= 1 (``suslov.kernel.horner.combination``), the powers of two of s^p
@@ -222,7 +222,7 @@ SECTIONS = [
         PublicFunction(
             'scattering_angle',
             'p: ArrayLike, d: ArrayLike',
-            'np.ndarray',
+            'np.ndarray | np.float64',
             r"""Angle Delta psi in [0, pi] between the axes of the limit steady rotations (Theorem 5.2, corrected).
 
     Case I13 = 0, omega as in :func:`omega`, any real ``p`` (not only integers) and
@@ -237,7 +237,7 @@ SECTIONS = [
     Evaluated as ``2 atan2(sqrt(tanh^2 x + s^2 sech^2 x), c sech x)`` with
     ``x = pi |p|/(2d)`` and ``s``, ``c`` = ``|sin|``, ``|cos|`` of ``pi p/2`` with p reduced
     exactly (``suslov.kernel.phase.half_pi_parts``): no arccos near 1, no overflow for
-    small d, accurate for p within 1e-12 of an integer.  ``p``, ``d`` broadcast.  Error
+    small d, accurate for p within 1e-12 of an integer.  ``p``, ``d`` broadcast (scalars give ``np.float64``).  Error
     bound (proven from the emitted code, rounding model with libm calls within 4 ulp, for
     ``pi |p|/(2d) <= 1024``): absolute 1.5e-14.
 
@@ -279,7 +279,7 @@ SECTIONS = [
         PublicFunction(
             'general_scattering_angle',
             'I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, I23: ArrayLike',
-            'np.ndarray',
+            'np.ndarray | np.float64',
             r"""Scattering angle Delta psi of any body (paper's frame: I12 = 0, a = e3), in closed form.
 
     With s = sinh t the Poisson equations of every body are Gauss's hypergeometric equation
@@ -290,7 +290,7 @@ SECTIONS = [
 
     for omega = u tanh t + v sech t (eq:o12); for I13 = 0 it is Theorem 5.2 (corrected), certified
     exactly.  Evaluated in a form with no cancellation and no overflow (``_general_angle``); the
-    entries broadcast like NumPy arrays, I11, I22 > 0, not I13 = I23 = 0 (the equilibrium).
+    entries broadcast like NumPy arrays (scalars give ``np.float64``), I11, I22 > 0, not I13 = I23 = 0 (the equilibrium).
     Error bound, proven from the run-time code (rounding model, libm calls within 4 ulp) for
     I11, I22 >= 2^-20 times the largest entry and pi U/2 <= 7e13, in mixed form: the result is within
     400 u (u = 2^-53) of the exact angle at h, g, Y within relative 200 u of those (h = pi U/2,
