@@ -12,6 +12,10 @@ seeds are fixed, so the certificate log is deterministic.
 evaluated *exactly* in Q at two points with x = e^t, d and c = sqrt(d^2+1) rational
 (:func:`exact_basis_values`), the phase e^{i(p/d)t} enclosed in a ball: a certificate for those two points.
 
+The public routes themselves (float64, ``_mp`` twins, balls, the finite-value repair, the far phase) are compared
+with the certified closed forms evaluated in python-flint balls by :mod:`derivations.output.runtime_routes` (issue 44:
+the models here call the same run-time code as the routes, so a fault shared by both passed).
+
 Also checked: ``special_case_parameters`` chains into ``omega`` (the body's own general solution, in the returned
 frame, equals ``omega(t, p, d)`` with p > 0), and ``meromorphy`` agrees with ``kovalevskaya_exponents``.
 

@@ -24,6 +24,11 @@ with ``--verify DIR``, from any generated tree) and certifies the module itself:
    form a rotation; ``special_case_parameters`` must chain into ``omega`` (the body's own
    general solution in the returned frame); ``meromorphy`` must agree with
    ``kovalevskaya_exponents`` in its special cases.
+4. **Run-time routes (certificates at listed points).**  Every public route (float64, ``_mp`` twins, ball
+   routes, the finite-value repair, the far phase of ``gamma_basis``, the ball-checked branches of
+   ``general_scattering_angle``) at points that reach each branch, against the certified closed forms
+   evaluated in python-flint balls from the exact inputs (:mod:`derivations.output.runtime_routes`): a
+   fault in ``suslov/runtime`` or ``suslov/kernel`` that the models of part 3 share is seen there.
 
 A failure stops the build like any certificate (nothing is moved into place) and names
 the function, p and what differs; :func:`verify` returns the first discrepancy instead.
@@ -49,6 +54,7 @@ from derivations.core.certificates import (
     stopwatch,
 )
 from derivations.core.recipe_rings import BASIS_RING, INTEGRAL_RING
+from derivations.output.ball_reference import integral_at
 
 SECTION = "roundtrip"
 EXACT_METHOD = ("exact zero test of the emitted code evaluated with a SymPy context (numerator expanded over the "
@@ -134,26 +140,6 @@ def certify_emitted(log: CertificateLog, module, emitted: dict) -> list:
 # ------------------------------------------------------------------ 2. shared recipes
 
 
-def _integral_at(ff, d: Fraction) -> dict:
-    """Certified P1, P2, P3 at a rational d, as homogeneous coefficient lists of Fractions."""
-    def value(poly):
-        total: dict = {}
-        for monomial, coefficient in zip(poly.monoms(), poly.coeffs()):
-            k = int(monomial[2])  # power of w2
-            total[k] = total.get(k, 0) + int(coefficient) * d ** int(monomial[0])
-        return [Fraction(total.get(k, 0)) for k in range(ff.p + 1)]
-
-    den, K = _scalar_at(ff.Den, d), _scalar_at(ff.K, d)
-    return {"P1": [v / den for v in value(ff.P1t)], "P2": [v / (K * K * den) for v in value(ff.M2)],
-            "P3": [v / (K * den) for v in value(ff.M3)]}
-
-
-def _scalar_at(poly, d: Fraction) -> Fraction:
-    if isinstance(poly, int):
-        return Fraction(poly)
-    return sum((int(c) * d ** int(m[0]) for m, c in zip(poly.monoms(), poly.coeffs())), Fraction(0))
-
-
 def certify_integral_core(log: CertificateLog, module, objects: dict) -> list:
     out = []
     d_point = Fraction(3, 7)
@@ -162,7 +148,7 @@ def certify_integral_core(log: CertificateLog, module, objects: dict) -> list:
             core = module._integral_core(p, INTEGRAL_RING)
             differing = [name for name in ("P1t", "M2", "M3", "K", "Den") if getattr(core, name) != getattr(ff, name)]
             public = module.first_integral_coefficients(p, d_point)
-            expected = _integral_at(ff, d_point)
+            expected = integral_at(ff, d_point)
             differing += [f"first_integral_coefficients(p, 3/7)[{name!r}]" for name in ("P1", "P2", "P3")
                           if public[name] != expected[name]]
         out.append(_record(log, f"$p = {p}$: first_integral's exact core reproduces the certified P1~, $M2$, $M3$, $K$, Den, "
@@ -261,7 +247,7 @@ def certify_module(log: CertificateLog, build, directory: Path) -> list:
     runs while this process does its own part.
     """
     from derivations.core.emit import emitted_formulas
-    from derivations.output import float_paths
+    from derivations.output import float_paths, runtime_routes
 
     module = load_module(directory)
     exports = build.results["meromorphic"].exports
@@ -275,6 +261,7 @@ def certify_module(log: CertificateLog, build, directory: Path) -> list:
         certs.extend(certify_integral_core(log, module, build.results["first_integrals"].exports["objects"]))
         certs.extend(certify_basis_core(log, module, exports["objects"]))
         certs.extend(float_paths.certify(log, module, build, skip=set(digests)))
+        certs.extend(runtime_routes.certify(log, module, build))   # every public route, independent references
 
     with log.section(SECTION), mpmath.workdps(15):
         tasks = [(str(directory), p, digest) for p, digest in sorted(digests.items())]

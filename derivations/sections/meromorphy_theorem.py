@@ -184,7 +184,7 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
 
     proof = (c_pole, c_residue, c_char, c_square, c_params, c_unipotent)
     result.formula("meromorphy_theorem", "Theorem 3.1", "Meromorphy and logarithms at the poles, every $p$, every body (theorem)",
-                   [r"\text{at every pole }t_0\text{ of }\omega:\ \text{exponents }0,\ \pm\bar\Lambda,\quad"
+                   [r"\text{at every pole }t_0\text{ of }\omega:\ \text{exponents }0,\ \pm\bar\Lambda,\quad "
                     r"w_-^2=-\bar\Lambda^2",
                     r"\Lambda\ \text{odd}\ \Rightarrow\ \text{every solution meromorphic};\quad \Lambda\ \text{even}\ "
                     r"\Rightarrow\ \text{logarithms};\quad \Lambda\notin\mathbb Z\ \Rightarrow\ \text{branching}",
