@@ -21,8 +21,8 @@ from derivations.sections import (
     hypergeometric,
     kovalevskaya,
     meromorphic,
-    meromorphy_theorem,
     model,
+    pole_theorem,
     residue,
     scattering,
     special_case,
@@ -31,7 +31,7 @@ from derivations.sections import (
 DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, kovalevskaya, residue, hypergeometric,
                                                    meromorphic, first_integrals, scattering, galois,
                                                    fuchsian, gauss, general_angle, general_galois,
-                                                   meromorphy_theorem)}
+                                                   pole_theorem)}
 
 
 def requirements(name: str) -> tuple[str, ...]:

@@ -2,5 +2,5 @@
 
 ``from generated import suslov_formulas`` gives the NumPy/mpmath functions;
 ``certificates.json`` holds the certificates, ``suslov_formulas.tex`` the
-LaTeX document.  Built with pmax = 15 from: model, special_case, kovalevskaya, residue, hypergeometric, meromorphic, first_integrals, scattering, galois, fuchsian, gauss, general_angle, general_galois.
+LaTeX document.  Built with pmax = 15 from: model, special_case, kovalevskaya, residue, hypergeometric, meromorphic, first_integrals, scattering, galois, fuchsian, gauss, general_angle, general_galois, pole_theorem.
 """

@@ -148,7 +148,7 @@ def _gauss_invariants(ctx, I11, I22, I13, I23):
 def _general_angle(ctx, h, g, s, c):
     """Delta psi of any body from h = pi U/2, g = pi (U - X)/2, s = |sin(pi Y/2)|, c = |cos(pi Y/2)| (w_- = X + i Y; evaluation form).
 
-    Emitted from the certified expression; certificates: general_angle:354, general_angle:353, general_angle:359.
+    Emitted from the certified expression; certificates: general_angle:356, general_angle:355, general_angle:353, general_angle:361.
     """
     return 2*ctx.atan2(ctx.sqrt(ctx.expm1(-2*g)*ctx.expm1(2*g - 4*h)/(ctx.expm1(-2*h)*ctx.expm1(-2*h)))*ctx.sqrt((s*s)*(ctx.sech(h)*ctx.sech(h)) + (ctx.tanh(h)*ctx.tanh(h))), ctx.sqrt((c*c)*(ctx.sech(h)*ctx.sech(h)) + ((s*s)*(ctx.sech(h)*ctx.sech(h)) + (ctx.tanh(h)*ctx.tanh(h)))*ctx.exp(-2*g)*(ctx.expm1(2*g - 2*h)*ctx.expm1(2*g - 2*h))/(ctx.expm1(-2*h)*ctx.expm1(-2*h))))
 
@@ -169,7 +169,7 @@ def _basis_core(p: int, ring):
 # ---------------------------------------------------------------- angular velocity
 
 
-def omega(t: ArrayLike, p: ArrayLike, d: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+def omega(t: ArrayLike, p: ArrayLike, d: ArrayLike) -> tuple[np.ndarray | np.float64, np.ndarray | np.float64]:
     """Angular velocity of the Suslov problem in the case I13 = 0 (paper: ``omegas``).
 
     Derived and certified formula (rate A = 1, energy F1 = p^2 (d^2+1)/d^2)::
@@ -182,7 +182,7 @@ def omega(t: ArrayLike, p: ArrayLike, d: ArrayLike) -> tuple[np.ndarray, np.ndar
     non-zero; ``d > 0`` with ``d^2 = I11/I22 - 1``.
 
     ``t``, ``p`` and ``d`` broadcast like NumPy arrays; returns two float64 arrays of the
-    broadcast shape.  No overflow for any t.  Error bound (proven from the emitted code, rounding
+    broadcast shape (two ``np.float64`` when every argument is a scalar, as ufuncs do).  No overflow for any t.  Error bound (proven from the emitted code, rounding
     model with libm calls within 4 ulp, for every t, d in [1e-3, 1e3]): ``5e-15 |omega_i| +
     1e-300 (|p|/d) sqrt(d^2+1)`` per component (the second term where sech t underflows).
 
@@ -207,7 +207,7 @@ def omega_mp(t, p, d, dps: int | None = None) -> tuple:
 
 
 def omega_general(t: ArrayLike, I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, I23: ArrayLike,
-                  branch: int = 1) -> tuple[np.ndarray, np.ndarray]:
+                  branch: int = 1) -> tuple[np.ndarray | np.float64, np.ndarray | np.float64]:
     """General solution of the reduced Euler equations (paper ``eq:o12``, ``c's``, corrected).
 
     Inertia tensor with I12 = 0 (frame choice), constraint axis a = (0, 0, 1); the
@@ -224,7 +224,7 @@ def omega_general(t: ArrayLike, I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, 
         omega2 = ( I11 I22 I13 tanh t + I11 I23 r sech t) / D
 
     Any other solution is lambda omega(lambda (t - t0)).  All arguments but ``branch``
-    broadcast; returns two float64 arrays.  Error bound (proven from the emitted code, rounding
+    broadcast; returns two float64 arrays (``np.float64`` for scalar arguments).  Error bound (proven from the emitted code, rounding
     model with libm calls within 4 ulp, for every t and ``I11``, ``I22``, ``max(|I13|, |I23|)`` at
     least 1e-3 of the largest entry): absolute ``6e-15 B + 1e-300``,
     ``B = (I11 I22 |I23| + I22 |I13| r + I11 I22 |I13| + I11 |I23| r)/D``.
@@ -260,7 +260,7 @@ def first_integral_coefficients(p: int, d) -> dict:
 
 
 def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, gamma1: ArrayLike,
-                   gamma2: ArrayLike, gamma3: ArrayLike) -> np.ndarray:
+                   gamma2: ArrayLike, gamma3: ArrayLike) -> np.ndarray | np.float64:
     """Polynomial first integral F3 = P1 g1 + P2 g2 + P3 g3 of eq:sysfin + Poisson (odd p; Theorem 6.2).
 
     P1, P2, P3 are homogeneous of degree p in (omega1, omega2):
@@ -270,7 +270,7 @@ def first_integral(p: int, d: ArrayLike, omega1: ArrayLike, omega2: ArrayLike, g
     L = omega2/(d^2+1) d/domega1 - omega1 d/domega2.  (The printed eq:p23 has the wrong
     sign in P3 and pol_sol wrong coefficients: see the errata.)
 
-    ``d`` and the five state arguments broadcast; returns float64.  The coefficients are
+    ``d`` and the five state arguments broadcast; returns float64 (an array, or ``np.float64`` for scalar arguments).  The coefficients are
     computed exactly from the float d and rounded once (cached per (p, d)); evaluated as
     ``s^p sum_i P_i(omega/s) gamma_i`` with ``s = max(|omega1|, |omega2|)`` and Horner's rule in
     the ratio of modulus <= 1 (``suslov.kernel.horner.combination``), the powers of two of s^p
@@ -352,7 +352,7 @@ def gamma_basis_mp(t, p: int, d, dps: int | None = None):
 # ---------------------------------------------------------------- scattering angle (Theorem 5.2)
 
 
-def scattering_angle(p: ArrayLike, d: ArrayLike) -> np.ndarray:
+def scattering_angle(p: ArrayLike, d: ArrayLike) -> np.ndarray | np.float64:
     """Angle Delta psi in [0, pi] between the axes of the limit steady rotations (Theorem 5.2, corrected).
 
     Case I13 = 0, omega as in :func:`omega`, any real ``p`` (not only integers) and
@@ -367,7 +367,7 @@ def scattering_angle(p: ArrayLike, d: ArrayLike) -> np.ndarray:
     Evaluated as ``2 atan2(sqrt(tanh^2 x + s^2 sech^2 x), c sech x)`` with
     ``x = pi |p|/(2d)`` and ``s``, ``c`` = ``|sin|``, ``|cos|`` of ``pi p/2`` with p reduced
     exactly (``suslov.kernel.phase.half_pi_parts``): no arccos near 1, no overflow for
-    small d, accurate for p within 1e-12 of an integer.  ``p``, ``d`` broadcast.  Error
+    small d, accurate for p within 1e-12 of an integer.  ``p``, ``d`` broadcast (scalars give ``np.float64``).  Error
     bound (proven from the emitted code, rounding model with libm calls within 4 ulp, for
     ``pi |p|/(2d) <= 1024``): absolute 1.5e-14.
 
@@ -406,7 +406,7 @@ def scattering_angle_ball(p, d, dps: int | None = None, prec: int | None = None)
 # ---------------------------------------------------------------- scattering angle of every body (closed form)
 
 
-def general_scattering_angle(I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, I23: ArrayLike) -> np.ndarray:
+def general_scattering_angle(I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, I23: ArrayLike) -> np.ndarray | np.float64:
     """Scattering angle Delta psi of any body (paper's frame: I12 = 0, a = e3), in closed form.
 
     With s = sinh t the Poisson equations of every body are Gauss's hypergeometric equation
@@ -417,7 +417,7 @@ def general_scattering_angle(I11: ArrayLike, I22: ArrayLike, I13: ArrayLike, I23
 
     for omega = u tanh t + v sech t (eq:o12); for I13 = 0 it is Theorem 5.2 (corrected), certified
     exactly.  Evaluated in a form with no cancellation and no overflow (``_general_angle``); the
-    entries broadcast like NumPy arrays, I11, I22 > 0, not I13 = I23 = 0 (the equilibrium).
+    entries broadcast like NumPy arrays (scalars give ``np.float64``), I11, I22 > 0, not I13 = I23 = 0 (the equilibrium).
     Error bound, proven from the run-time code (rounding model, libm calls within 4 ulp) for
     I11, I22 >= 2^-20 times the largest entry and pi U/2 <= 7e13, in mixed form: the result is within
     400 u (u = 2^-53) of the exact angle at h, g, Y within relative 200 u of those (h = pi U/2,

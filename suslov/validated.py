@@ -354,7 +354,7 @@ def _with_exact_decision(result, I11, I22, I13, I23):
 
 def _exact_trivial_at_poles(I11, I22, I13, I23) -> tuple:
     """(True, reason) when the theorem of :mod:`suslov.kernel.local_behaviour` (certified by the build:
-    meromorphy_theorem) says every solution is meromorphic at the poles -- the Kovalevskaya exponent Lambda an odd
+    pole_theorem) says every solution is meromorphic at the poles -- the Kovalevskaya exponent Lambda an odd
     integer, for every p, not only the p a build's per-p recursion reached -- so the loops about x = +-i are the
     identity; (False, "") otherwise, and for input that is not an exact body."""
     try:
@@ -364,4 +364,4 @@ def _exact_trivial_at_poles(I11, I22, I13, I23) -> tuple:
     if not behaviour.meromorphic:
         return False, ""
     return True, (f"Lambda = {behaviour.Lambda} odd: every solution meromorphic at the poles, M(x = +-i) = I "
-                  "(theorem for every p, certified: meromorphy_theorem)")
+                  "(theorem for every p, certified: pole_theorem)")

@@ -1,6 +1,6 @@
 """Meromorphy and logarithms for every p and every body (issue 45): the theorem against independent routes.
 
-The theorem (``derivations/sections/meromorphy_theorem.py``) decides, from the Kovalevskaya exponent Lambda alone,
+The theorem (``derivations/sections/pole_theorem.py``) decides, from the Kovalevskaya exponent Lambda alone,
 whether the Poisson solutions are meromorphic (Lambda odd), logarithmic (Lambda even) or branching at the poles of
 omega; ``suslov.validated.local_behaviour`` is its run-time decision.  Expected values come from routes that share
 none of its steps:

@@ -65,7 +65,7 @@ from derivations.sections.fuchsian import cross
 from derivations.sections.gauss import I_EXT, U, j, spinor
 from suslov.kernel.local_behaviour import local_behaviour
 
-NAME = "meromorphy_theorem"
+NAME = "pole_theorem"
 TITLE = "Meromorphy and logarithms at the poles for every p and every body"
 REQUIRES = ("gauss", "residue", "galois", "fuchsian")
 
@@ -183,14 +183,14 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
         "; ".join(disagree) or ", ".join(f"({', '.join(r['body'])}): {local_behaviour(*r['body']).kind}" for r in ball_rows)))
 
     proof = (c_pole, c_residue, c_char, c_square, c_params, c_unipotent)
-    result.formula("meromorphy_theorem", "Theorem 3.1", "Meromorphy and logarithms at the poles, every $p$, every body (theorem)",
+    result.formula("pole_theorem", "Theorem 3.1", "Meromorphy and logarithms at the poles, every $p$, every body (theorem)",
                    [r"\text{at every pole }t_0\text{ of }\omega:\ \text{exponents }0,\ \pm\bar\Lambda,\quad "
                     r"w_-^2=-\bar\Lambda^2",
                     r"\Lambda\ \text{odd}\ \Rightarrow\ \text{every solution meromorphic};\quad \Lambda\ \text{even}\ "
                     r"\Rightarrow\ \text{logarithms};\quad \Lambda\notin\mathbb Z\ \Rightarrow\ \text{branching}",
                     r"I_{13}=0:\ \Lambda=p\quad(\text{Theorem 3.1 and its converse; Conjecture 5.2 at }s_1,s_2\text{, for every }p)"],
                    *proof, c_residue_agree, c_ball_agree)
-    result.formula("meromorphy_theorem_proof", "Theorem 3.1", "Proof (local monodromy of Gauss's equation)",
+    result.formula("pole_theorem_proof", "Theorem 3.1", "Proof (local monodromy of Gauss's equation)",
                    r"\parbox{0.94\linewidth}{\small Near a pole, $s=\sinh t$ has $s\mp i\sim(t-t_0)^2$, so a loop about "
                    r"$t_0$ is two loops about $s=\pm i$, where the spinor lift has exponents $\pm\kappa/2$, "
                    r"$\kappa^2=-w_-^2/4$, and local monodromy $M$ with eigenvalues $e^{\pm i\pi\kappa}$ (Levelt); the "
