@@ -193,10 +193,11 @@ def test_the_mirror_axis_i23_zero_through_eq_lina():
     assert even.verdict == "SO(3,C)" and (even.matrices["x=i"].trace() - 3).contains(0)
 
 
-def test_odd_p_beyond_the_certified_range_balls_undecided_exact_decision_reducible(monkeypatch):
-    """The balls cannot prove M(+-i) = I; the exact no-logarithm certificate exists per p, up to the
-    loaded formulas' PMAX.  With a module certified only up to p = 1, the balls leave p = 3 undecided;
-    Kimura's theorem needs no per-p certificate and decides it (reducible)."""
+def test_odd_p_beyond_the_loaded_pmax_is_decided_by_the_theorem(monkeypatch):
+    """The balls cannot prove M(+-i) = I.  That identity used to rest on the per-p Frobenius certificate, up to the
+    loaded formulas' PMAX (p = 3 undecided with a module certified to p = 1).  The meromorphy theorem
+    (derivations/sections/pole_theorem.py: Lambda odd gives M^2 = -I for the lift) covers every odd p, so PMAX no
+    longer matters; Kimura's theorem decides the group (reducible) as before."""
     import suslov.validated as validated
 
     real = validated.gf
@@ -211,8 +212,8 @@ def test_odd_p_beyond_the_certified_range_balls_undecided_exact_decision_reducib
     m = monodromy(2, 1, 0, "-1/3", dps=20)
     assert m.verdict == "reducible" and m.liouvillian is True
     assert any(outcome == "pass" and "exactly" in claim for claim, outcome, _ in m.certificates)
-    assert _contains(m.matrices["x=i"], I3)                # consistent with p = 3, but not a proof
-    assert any(outcome == "unknown" and "beyond the certified range p <= 1" in detail
-               for _, outcome, detail in m.certificates)
+    assert _contains(m.matrices["x=i"], I3)                # consistent with p = 3, and certified by the theorem
+    assert any("theorem for every p" in str(detail) for _, _, detail in m.certificates)
+    assert not any("beyond the certified range" in str(detail) for _, _, detail in m.certificates)
     monkeypatch.undo()
     assert monodromy(2, 1, 0, "-1/3", dps=20).verdict == "reducible"

@@ -13,7 +13,8 @@ copy first on ``sys.path`` (``python -c`` in the copy: ``sys.path[0]`` is the co
 
 Each fault says why it changes behaviour at a checked point (a fault that changes nothing is not a fault);
 ``EQUIVALENT`` lists changes that were tried and change nothing observable, with the reason, and are not run.
-About 9 s per fault (one ``--verify``): the whole file is marked slow.
+The real command line runs on the unmutated copy and on two faults (about 9 s each: ``--verify`` derives
+first); the others run in four batches that derive once each (``tests/verify_faults_batch.py``).
 """
 import os
 import shutil
@@ -222,10 +223,38 @@ def test_the_unmutated_copy_passes_and_is_what_runs(tmp_path):
     assert done.returncode == 0, done.stderr[-3000:]
 
 
+CLI_FAULTS = ("angle-mp-sign", "finite-repair-digits")   # through the real command line (one subprocess each)
+CHUNKS = 4                                                 # the rest in batches: one derivation per batch
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("ident, names, path, original, mutated, why", FAULTS, ids=[f[0] for f in FAULTS])
-def test_each_seeded_fault_is_rejected_naming_the_function(tmp_path, ident, names, path, original, mutated, why):
+@pytest.mark.parametrize("ident, names, path, original, mutated, why", [f for f in FAULTS if f[0] in CLI_FAULTS],
+                         ids=list(CLI_FAULTS))
+def test_the_command_line_rejects_a_seeded_fault_naming_the_function(tmp_path, ident, names, path, original, mutated,
+                                                                      why):
     done = verify(seeded_tree(tmp_path, path, original, mutated))
     message = done.stderr.strip().splitlines()[-1] if done.stderr.strip() else ""
     assert done.returncode == 1, f"{ident} passed --verify ({why}): {done.stdout[-500:]} {done.stderr[-1500:]}"
     assert any(name in message for name in names), f"{ident}: the message names none of {names}: {message[:600]}"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("chunk", range(CHUNKS))
+def test_each_seeded_fault_is_rejected_naming_the_function(tmp_path, chunk):
+    """Every fault (FAULTS[chunk::CHUNKS]) through --verify's checks, derived once per batch
+    (tests/verify_faults_batch.py: each copy's suslov and the checking layers imported afresh from the copy)."""
+    import json
+
+    faults = FAULTS[chunk::CHUNKS]
+    trees = {str(seeded_tree(tmp_path / ident, path, original, mutated)): (ident, names, why)
+             for ident, names, path, original, mutated, why in faults}
+    env = dict(os.environ, PYTHONPATH=str(ROOT), SUSLOV_NO_CACHE="1")
+    done = subprocess.run([sys.executable, str(ROOT / "tests" / "verify_faults_batch.py"), *trees], cwd=ROOT, env=env,
+                          capture_output=True, text=True, timeout=900, check=False)
+    assert done.returncode == 0, done.stderr[-3000:]
+    outcome = json.loads(done.stdout.strip().splitlines()[-1])
+    passed = [f"{ident} ({why})" for tree, (ident, _, why) in trees.items() if outcome[tree] is None]
+    assert not passed, f"seeded faults that pass the checks: {passed}"
+    unnamed = [f"{ident}: {outcome[tree][:300]}" for tree, (ident, names, _) in trees.items()
+               if not any(name in outcome[tree] for name in names)]
+    assert not unnamed, f"rejections that name none of the function's names: {unnamed}"

@@ -232,8 +232,8 @@ def check_omega(log, module, ref) -> list:
                 if values is not None:
                     tally.within(f"{_call_text('omega_mp', args, dps=dps)} component {i + 1}", values[i],
                                  refs and refs[i], refs and relative(refs[i], dps))
-    certs.append(tally.record(log, f"within 10^(1 - dps) relative of the certified omega at {len(OMEGA_MP)} points "
-                              "(exact decimals, dps 30 and 45)", METHOD, elapsed[0]))
+    certs.append(tally.record(log, f"within $10^(1 - dps)$ relative of the certified omega at {len(OMEGA_MP)} points "
+                              "(exact decimals, $dps = 30$ and $45$)", METHOD, elapsed[0]))
     tally = Tally("omega_general")
     with stopwatch() as elapsed:
         for branch in (1, -1):
@@ -250,7 +250,7 @@ def check_omega(log, module, ref) -> list:
             for i in range(2):
                 if values is not None:
                     tally.within(f"{text} component {i + 1}", values[i], refs and refs[i], refs and relative(refs[i], dps))
-    certs.append(tally.record(log, f"within 10^(1 - dps) relative of the certified general solution at "
+    certs.append(tally.record(log, f"within $10^(1 - dps)$ relative of the certified general solution at "
                               f"{len(GENERAL_OMEGA_MP)} points (both branches)", METHOD, elapsed[0]))
     return certs
 
@@ -262,8 +262,8 @@ def check_repair(log, module, ref) -> Certificate:
         _float_pairs(tally, "omega", module.omega, REPAIR_OMEGA, ref.omega, lambda r, pt: _omega_bound(r, *pt[1:]))
         _float_pairs(tally, "omega_general", module.omega_general, REPAIR_GENERAL, ref.omega_general,
                      lambda r, pt: (_omega_general_bound(*pt[1:]),) * 2, 1)
-    return tally.record(log, "at points whose float64 evaluation is not finite while the value is (c p beyond "
-                        "float64 at d = 1e10; entries spanning 1e-300 to 1e300), the repaired values are within "
+    return tally.record(log, "at points whose float64 evaluation is not finite while the value is ($c p$ beyond "
+                        "float64 at $d = 1e10$; entries spanning $1e-300$ to $1e300$), the repaired values are within "
                         "the docstrings' bounds of the certified omega", METHOD, elapsed[0])
 
 
@@ -281,9 +281,9 @@ def check_angles(log, module, ref) -> list:
             angle = enclose(80, ref.scattering_angle, *point)
             tally.within(_call_text("scattering_angle", point), np.asarray(values).flat[k], angle and angle[0],
                          STATED["scattering_angle"])
-    certs.append(tally.record(log, f"float64 within absolute 1.5e-14 of Theorem 5.2's angle at {len(ANGLE)} points "
-                              "(even, non-integer, negative p, p next to an odd integer, p and d beyond 2^1020, "
-                              "p = 1e-300)", METHOD, elapsed[0]))
+    certs.append(tally.record(log, f"float64 within absolute $1.5e-14$ of Theorem 5.2's angle at {len(ANGLE)} points "
+                              "(even, non-integer, negative $p$, $p$ next to an odd integer, $p$ and $d$ beyond $2^1020$, "
+                              "$p = 1e-300$)", METHOD, elapsed[0]))
     tally = Tally("scattering_angle_mp")
     with stopwatch() as elapsed:
         for args, dps in ANGLE_MP:
@@ -292,8 +292,8 @@ def check_angles(log, module, ref) -> list:
             angle = enclose(int(3.33 * dps) + 20, ref.scattering_angle, *args)
             if value is not None:
                 tally.within(text, value, angle and angle[0], angle and relative(angle[0], dps))
-    certs.append(tally.record(log, f"within 10^(1 - dps) relative of Theorem 5.2's angle at {len(ANGLE_MP)} points "
-                              "(exact decimals, dps 30 and 60)", METHOD, elapsed[0]))
+    certs.append(tally.record(log, f"within $10^(1 - dps)$ relative of Theorem 5.2's angle at {len(ANGLE_MP)} points "
+                              "(exact decimals, $dps = 30$ and $60$)", METHOD, elapsed[0]))
     tally = Tally("scattering_angle_ball")
     with stopwatch() as elapsed:
         for args, prec in ANGLE_BALL:
@@ -324,9 +324,9 @@ def check_general_angles(log, module, ref) -> list:
             found = enclose(80, ref.general_angle, *body)
             tally.within(_call_text("general_scattering_angle", body), np.asarray(values).flat[k],
                          found and found[0], found and _general_bound(*found))
-    certs.append(tally.record(log, f"float64 within 1e-13 (1 + abs(Y)) (relative below an angle of 1) of the certified "
+    certs.append(tally.record(log, f"float64 within $1e-13 (1 + abs(Y))$ (relative below an angle of 1) of the certified "
                               f"angle at {len(BODY)} bodies: four in the proven domain, one in the ball-checked "
-                              "branch (I22 below 2^-20 of the largest entry), one repaired (float64 has no value)",
+                              "branch ($I22$ below $2^(-20)$ of the largest entry), one repaired (float64 has no value)",
                               METHOD, elapsed[0]))
     tally = Tally("general_scattering_angle_mp")
     with stopwatch() as elapsed:
@@ -336,8 +336,8 @@ def check_general_angles(log, module, ref) -> list:
             found = enclose(int(3.33 * dps) + 20, ref.general_angle, *args)
             if value is not None:
                 tally.within(text, value, found and found[0], found and relative(found[0], dps))
-    certs.append(tally.record(log, f"within 10^(1 - dps) relative of the certified angle at {len(BODY_MP)} bodies (exact "
-                              "decimals; abs(Y) about 1e20: 20 digits more than asked)", METHOD, elapsed[0]))
+    certs.append(tally.record(log, f"within $10^(1 - dps)$ relative of the certified angle at {len(BODY_MP)} bodies (exact "
+                              "decimals; $abs(Y)$ about $1e20$: 20 digits more than asked)", METHOD, elapsed[0]))
     tally = Tally("general_scattering_angle_ball")
     with stopwatch() as elapsed:
         for args, prec in BODY_BALL:
@@ -347,7 +347,7 @@ def check_general_angles(log, module, ref) -> list:
             if value is not None:
                 tally.contains(text, value, found and found[0], prec)
     certs.append(tally.record(log, f"the ball contains the certified angle and carries the prec relative bits asked, at "
-                              f"{len(BODY_BALL)} bodies (abs(Y) about 1e20: the precision must grow)", METHOD,
+                              f"{len(BODY_BALL)} bodies ($abs(Y)$ about $1e20$: the precision must grow)", METHOD,
                               elapsed[0]))
     return certs
 
@@ -378,10 +378,11 @@ def check_first_integral(log, module, build) -> list:
                         if got is not None:
                             tally.within(_call_text(route, (p, d, w1, w2, *gammas)), got, certified,
                                          bound + arb("5e-324"))
-        what = ("float64 within its docstring's bound 2e-15 (p + 1) s^p sum_i abs(gamma_i) sum_k abs(a_ik)"
-                if route == "first_integral" else "within 10^(1 - dps) (p + 1) s^p sum_i abs(gamma_i) sum_k abs(a_ik)")
+        what = ("float64 within its docstring's bound $2e-15 (p + 1) s^p G A$"
+                if route == "first_integral" else "within $10^(1 - dps) (p + 1) s^p G A$")
+        what += (", $G = abs(gamma_1) + abs(gamma_2) + abs(gamma_3)$, $A$ the sum of the moduli of the coefficients $a_ik$")
         certs.append(tally.record(log, f"{what} of F3 from the certified numerators, evaluated exactly in Q, at "
-                                  f"3 points for p in {sorted(set(ps))}", "exact rational evaluation of "
+                                  f"3 points for $p$ in {{{', '.join(str(q) for q in sorted(set(ps)))}}}", "exact rational evaluation of "
                                   "the build's certified numerators (Fractions) at each listed point, the comparison "
                                   "in 400-bit balls; a certificate for these points", elapsed[0]))
     return certs
@@ -414,12 +415,12 @@ def check_basis(log, module, build) -> list:
                         tally.within(f"{_call_text(route, (t, p, d))} row {i + 1} entry {j + 1}", got[i, j],
                                      rows and rows[entry], bound)
         far = sum(1 for d, ts in BASIS_T.items() for t in ts if abs(p * t / d) >= FAR_PHASE)
-        what = ("float64 within absolute 1e-14 (p + 1)^1.5 (its docstring)" if route == "gamma_basis" else
-                f"within absolute 10^(1 - dps) at dps = {BASIS_DPS}")
-        certs.append(tally.record(log, f"{what} of the rows from the certified numerators at p = {p}, "
+        what = ("float64 within absolute $1e-14 (p + 1)^1.5$ (its docstring)" if route == "gamma_basis" else
+                f"within absolute $10^(1 - dps)$ at $dps = {BASIS_DPS}$")
+        certs.append(tally.record(log, f"{what} of the rows from the certified numerators at $p = {p}$, "
                                   f"{sum(len(ts) for ts in BASIS_T.values())} points, {far} with the far phase "
-                                  "(abs(p t/d) at least 5.3e7: careful_phase)", "ball enclosure (python-flint arb) "
-                                  "of the certified numerators at x = exp(t) and of the phase exp(i p t/d) from the "
+                                  "($abs(p t/d) >= 5.3e7$: careful_phase)", "ball enclosure (python-flint arb) "
+                                  "of the certified numerators at $x = e^t$ and of the phase $e^(i p t/d)$ from the "
                                   "exact t; a certificate for these points", elapsed[0]))
     return certs
 

@@ -157,9 +157,8 @@ def _kummer_connection(log: CertificateLog, ad) -> Certificate:
     B = (kappa_ + mu_ - j * U_) / 2
     C = 1 + kappa_
     pairs = [(B, 1 - B), (C - A, A - C + 1), (A, 1 - A), (C - B, B - C + 1)]
-    c_pairs = certify_zero(log, "the Gamma factors of $rho = P12 P21/(P11 P22) = Gamma(B) Gamma(C - A) Gamma(A - C + 1) "
-                           "Gamma(1 - B)/(Gamma(A) Gamma(C - B) Gamma(B - C + 1) Gamma(1 - A))$ pair into arguments "
-                           "$x$, $1 - x$ (reflection formula)", "derived",
+    c_pairs = certify_zero(log, "$rho = P12 P21/(P11 P22)$ is a ratio of eight values of the Gamma function whose arguments "
+                           "pair as $x$ and $1 - x$ for $x = B$, $C - A$, $A$, $C - B$ (the reflection formula applies)", "derived",
                            [x + y - 1 for x, y in pairs], Domain("Q(kappa, mu, U)[i]/(i^2+1)", (I_EXT,)))
 
     def sin_half(e):       # sin(pi x/2) with e = e^(i pi x/2)
