@@ -204,12 +204,17 @@ def remove_stale(directory: Path, prefix: str) -> list[Path]:
         pid = rest[1:].split("-", 1)[0].split(".", 1)[0]
         if not pid.isdigit() or _pid_alive(int(pid)):
             continue
-        if entry.is_dir() and not entry.is_symlink():
-            shutil.rmtree(entry, ignore_errors=True)
-        else:
-            entry.unlink(missing_ok=True)
+        _remove(entry)
         removed.append(entry)
     return removed
+
+
+def _remove(entry: Path) -> None:
+    """A directory tree or a file (a symbolic link itself, never its target)."""
+    if entry.is_dir() and not entry.is_symlink():
+        shutil.rmtree(entry, ignore_errors=True)
+    else:
+        entry.unlink(missing_ok=True)
 
 
 def _name(target: Path, kind: str) -> Path:
@@ -293,10 +298,7 @@ def discard_own(directory, prefix: str) -> list[Path]:
     except OSError:
         return removed
     for entry in entries:
-        if entry.is_dir() and not entry.is_symlink():
-            shutil.rmtree(entry, ignore_errors=True)
-        else:
-            entry.unlink(missing_ok=True)
+        _remove(entry)
         removed.append(entry)
     return removed
 

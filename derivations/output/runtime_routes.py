@@ -284,27 +284,39 @@ def check_angles(log, module, ref) -> list:
     certs.append(tally.record(log, f"float64 within absolute $1.5e-14$ of Theorem 5.2's angle at {len(ANGLE)} points "
                               "(even, non-integer, negative $p$, $p$ next to an odd integer, $p$ and $d$ beyond $2^1020$, "
                               "$p = 1e-300$)", METHOD, elapsed[0]))
-    tally = Tally("scattering_angle_mp")
-    with stopwatch() as elapsed:
-        for args, dps in ANGLE_MP:
-            text = _call_text("scattering_angle_mp", args, dps=dps)
-            value = tally.call(text, module.scattering_angle_mp, *args, dps=dps)
-            angle = enclose(int(3.33 * dps) + 20, ref.scattering_angle, *args)
-            if value is not None:
-                tally.within(text, value, angle and angle[0], angle and relative(angle[0], dps))
-    certs.append(tally.record(log, f"within $10^(1 - dps)$ relative of Theorem 5.2's angle at {len(ANGLE_MP)} points "
-                              "(exact decimals, $dps = 30$ and $60$)", METHOD, elapsed[0]))
-    tally = Tally("scattering_angle_ball")
-    with stopwatch() as elapsed:
-        for args, prec in ANGLE_BALL:
-            text = _call_text("scattering_angle_ball", args, prec=prec)
-            value = tally.call(text, module.scattering_angle_ball, *args, prec=prec)
-            angle = enclose(prec + 64, ref.scattering_angle, *args)
-            if value is not None:
-                tally.contains(text, value, angle and angle[0], prec)
-    certs.append(tally.record(log, f"the ball contains Theorem 5.2's angle and carries the prec relative bits asked, at "
-                              f"{len(ANGLE_BALL)} points (odd p: the angle pi)", METHOD, elapsed[0]))
+    certs.append(_angle_mp(log, module, "scattering_angle_mp", ANGLE_MP, ref.scattering_angle,
+                           f"within $10^(1 - dps)$ relative of Theorem 5.2's angle at {len(ANGLE_MP)} points "
+                           "(exact decimals, $dps = 30$ and $60$)"))
+    certs.append(_angle_ball(log, module, "scattering_angle_ball", ANGLE_BALL, ref.scattering_angle,
+                             f"the ball contains Theorem 5.2's angle and carries the prec relative bits asked, at "
+                             f"{len(ANGLE_BALL)} points (odd p: the angle pi)"))
     return certs
+
+
+def _angle_mp(log, module, name: str, points, reference, claim: str) -> Certificate:
+    """An angle's mp twin at (args, dps) points against the reference enclosed at about dps digits."""
+    tally = Tally(name)
+    with stopwatch() as elapsed:
+        for args, dps in points:
+            text = _call_text(name, args, dps=dps)
+            value = tally.call(text, getattr(module, name), *args, dps=dps)
+            found = enclose(int(3.33 * dps) + 20, reference, *args)
+            if value is not None:
+                tally.within(text, value, found and found[0], found and relative(found[0], dps))
+    return tally.record(log, claim, METHOD, elapsed[0])
+
+
+def _angle_ball(log, module, name: str, points, reference, claim: str) -> Certificate:
+    """An angle's ball route at (args, prec) points: contains the reference and carries prec relative bits."""
+    tally = Tally(name)
+    with stopwatch() as elapsed:
+        for args, prec in points:
+            text = _call_text(name, args, prec=prec)
+            value = tally.call(text, getattr(module, name), *args, prec=prec)
+            found = enclose(prec + 64, reference, *args)
+            if value is not None:
+                tally.contains(text, value, found and found[0], prec)
+    return tally.record(log, claim, METHOD, elapsed[0])
 
 
 def _general_bound(angle, Y):
@@ -328,27 +340,12 @@ def check_general_angles(log, module, ref) -> list:
                               f"angle at {len(BODY)} bodies: four in the proven domain, one in the ball-checked "
                               "branch ($I22$ below $2^(-20)$ of the largest entry), one repaired (float64 has no value)",
                               METHOD, elapsed[0]))
-    tally = Tally("general_scattering_angle_mp")
-    with stopwatch() as elapsed:
-        for args, dps in BODY_MP:
-            text = _call_text("general_scattering_angle_mp", args, dps=dps)
-            value = tally.call(text, module.general_scattering_angle_mp, *args, dps=dps)
-            found = enclose(int(3.33 * dps) + 20, ref.general_angle, *args)
-            if value is not None:
-                tally.within(text, value, found and found[0], found and relative(found[0], dps))
-    certs.append(tally.record(log, f"within $10^(1 - dps)$ relative of the certified angle at {len(BODY_MP)} bodies (exact "
-                              "decimals; $abs(Y)$ about $1e20$: 20 digits more than asked)", METHOD, elapsed[0]))
-    tally = Tally("general_scattering_angle_ball")
-    with stopwatch() as elapsed:
-        for args, prec in BODY_BALL:
-            text = _call_text("general_scattering_angle_ball", args, prec=prec)
-            value = tally.call(text, module.general_scattering_angle_ball, *args, prec=prec)
-            found = enclose(prec + 64, ref.general_angle, *args)
-            if value is not None:
-                tally.contains(text, value, found and found[0], prec)
-    certs.append(tally.record(log, f"the ball contains the certified angle and carries the prec relative bits asked, at "
-                              f"{len(BODY_BALL)} bodies ($abs(Y)$ about $1e20$: the precision must grow)", METHOD,
-                              elapsed[0]))
+    certs.append(_angle_mp(log, module, "general_scattering_angle_mp", BODY_MP, ref.general_angle,
+                           f"within $10^(1 - dps)$ relative of the certified angle at {len(BODY_MP)} bodies (exact "
+                           "decimals; $abs(Y)$ about $1e20$: 20 digits more than asked)"))
+    certs.append(_angle_ball(log, module, "general_scattering_angle_ball", BODY_BALL, ref.general_angle,
+                             f"the ball contains the certified angle and carries the prec relative bits asked, at "
+                             f"{len(BODY_BALL)} bodies ($abs(Y)$ about $1e20$: the precision must grow)"))
     return certs
 
 
