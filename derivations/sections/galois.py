@@ -337,15 +337,17 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
             ", ".join(f"{k}: {v}" for k, v in verdict.items())))
         rows.append({"p": p_value, "s1": verdict["s1"], "s2": verdict["s2"], "s3": verdict["s3"], "s4": verdict["s4"],
                      "certificate": cert.key})
-    result.formula("conjecture", "Conjecture 5.2", f"Logarithms at $s_1,\\dots,s_4$ for $p\\le{galois_pmax}$",
+    result.formula("conjecture", "Conjecture 5.2", f"Logarithms at $s_1,\\dots,s_4$ for $p\\le{galois_pmax}$ (the check of the "
+                   "theorem on the poles)",
                    r"s_1,s_2\text{ logarithmic}\iff p\text{ even};\quad s_3,s_4\text{ never}", c_swap, c_rot, c_mirror,
                    *[c for c in log.certificates if c.derivation == NAME and c.label == "Conjecture 5.2"])
     result.notes.append(
         f"Conjecture (section 5.2) decided for every $p <= {galois_pmax}$: $s1, s2$ are logarithmic exactly for even $p$; "
         "$s3, s4$ never. The obstruction for odd $p$ vanishes identically in $m$ (all d > 0); for even $p$ it is a non-zero "
         "element of $Q(m)$, so logarithms occur for all but finitely many $d$ (and the Frobenius recursion of the "
-        "Poisson system itself, section 3.2, shows them for every d > 0). A proof for all $p$ would need the obstruction "
-        "in closed form as a function of $p$, e.g. from the explicit solutions for odd $p$ and a contiguity relation in $p$.")
+        "Poisson system itself, section 3.2, shows them for every d > 0). The conjecture is proved for every $p$ and every "
+        "$d > 0$ by the theorem on the poles (pole_theorem: Gauss's equation at $s = i$, $Lambda = p$); this per-p table "
+        "is its check.")
 
     # Proposition 5.4 bookkeeping for even p
     prop_rows = []
