@@ -16,12 +16,12 @@ from derivations.sections.meromorphic_printed import real_imaginary, to_sympy, w
 
 
 @pytest.mark.parametrize("p", [1, 3])
-def test_tanh_sech_rows_equal_the_numerators(p):
+def test_tanh_sech_rows_equal_the_numerators(p, monkeypatch):
     basis = certify_p(CertificateLog(), p)
     rows = [r for r in written_out(basis) if not isinstance(r, str)]
     printed = {name: expr for name, expr in rows}
     t_sym, xs, ds, cs = sp.symbols("t x d c")
-    mpmath.mp.dps = 40
+    monkeypatch.setattr(mpmath.mp, "dps", 40)   # restored after the test: other tests rely on mpmath's default 15
     for t_value, d_value in ((mpmath.mpf("0.3"), mpmath.mpf("0.7")), (mpmath.mpf("-1.2"), mpmath.mpf("2.5"))):
         c_value = mpmath.sqrt(d_value**2 + 1)
         x_value = mpmath.exp(t_value)
