@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import math
 
-from flint import acb, acb_mat, arb, ctx
+from flint import acb, acb_mat, arb
 
 __all__ = ["SINGULAR_POINTS", "cross_matrix", "residues", "transfer", "path_transfer", "circle", "segment",
            "guard_digits"]
@@ -183,9 +183,3 @@ def guard_digits(R: list) -> int:
 def working_precision(digits: int) -> int:
     """Bits for ``digits`` correct digits after a few hundred ball products."""
     return int(3.33 * digits) + 64
-
-
-def set_precision(digits: int):
-    saved = ctx.prec
-    ctx.prec = working_precision(digits)
-    return saved
