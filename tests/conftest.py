@@ -109,3 +109,18 @@ def mutated_function(module, name: str, old: str, new: str):
     namespace = dict(vars(module))
     exec(source.replace(old, new), namespace)
     return namespace[name]
+
+
+@pytest.fixture
+def forget_loaded():
+    """Undo what a test loaded through ``suslov.loader`` (its cache of verified trees and the modules it imported:
+    the generated module under its private names, and the ``gen44`` test packages)."""
+    from suslov import loader
+
+    before, modules = dict(loader._loaded), set(sys.modules)
+    yield
+    loader._loaded.clear()
+    loader._loaded.update(before)
+    for name in set(sys.modules) - modules:
+        if "suslov_formulas" in name or name.startswith("gen44"):
+            del sys.modules[name]

@@ -19,7 +19,6 @@ import hashlib
 import json
 import re
 import shutil
-import sys
 from fractions import Fraction
 from pathlib import Path
 
@@ -193,17 +192,6 @@ def edit(tree: Path) -> None:
     document["pmax"] = 99999
     document["certificates"] = []
     (tree / "certificates.json").write_text(json.dumps(document))
-
-
-@pytest.fixture
-def forget_loaded():
-    before, modules = dict(loader._loaded), set(sys.modules)
-    yield
-    loader._loaded.clear()
-    loader._loaded.update(before)
-    for name in set(sys.modules) - modules:
-        if "suslov_formulas" in name or name.startswith("gen44"):
-            del sys.modules[name]
 
 
 def test_certificates_edited_between_verification_and_parse_are_refused(tmp_path, monkeypatch, forget_loaded):

@@ -81,17 +81,6 @@ def private_group(monkeypatch):
     monkeypatch.setattr(manifest, "_private_group", lambda gid, uid: gid == os.getgid())
 
 
-@pytest.fixture
-def forget_loaded():
-    before, modules = dict(loader._loaded), set(sys.modules)
-    yield
-    loader._loaded.clear()
-    loader._loaded.update(before)
-    for name in set(sys.modules) - modules:
-        if "suslov_formulas" in name:
-            del sys.modules[name]
-
-
 def remanifest(tree: Path) -> None:
     names = [line.split("  ", 1)[1] for line in (GENERATED / MANIFEST).read_text().splitlines()]
     (tree / MANIFEST).write_text("".join(f"{hashlib.sha256((tree / n).read_bytes()).hexdigest()}  {n}\n"

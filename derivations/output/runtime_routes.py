@@ -272,18 +272,11 @@ def check_repair(log, module, ref) -> Certificate:
 
 def check_angles(log, module, ref) -> list:
     """Theorem 5.2's angle: the float64 route, the mp twin, the ball route."""
-    certs = []
-    tally = Tally("scattering_angle")
-    with stopwatch() as elapsed:
-        values = tally.call("scattering_angle at the listed points", module.scattering_angle,
-                            *(np.array(c) for c in zip(*ANGLE)))
-        for k, point in enumerate(ANGLE if values is not None else ()):
-            angle = enclose(80, ref.scattering_angle, *point)
-            tally.within(_call_text("scattering_angle", point), np.asarray(values).flat[k], angle and angle[0],
-                         STATED["scattering_angle"])
-    certs.append(tally.record(log, f"float64 within absolute $1.5e-14$ of Theorem 5.2's angle at {len(ANGLE)} points "
-                              "(even, non-integer, negative $p$, $p$ next to an odd integer, $p$ and $d$ beyond $2^1020$, "
-                              "$p = 1e-300$)", METHOD, elapsed[0]))
+    certs = [_angle_float(log, module, "scattering_angle", ANGLE, ref.scattering_angle,
+                          lambda angle: STATED["scattering_angle"],
+                          f"float64 within absolute $1.5e-14$ of Theorem 5.2's angle at {len(ANGLE)} points "
+                          "(even, non-integer, negative $p$, $p$ next to an odd integer, $p$ and $d$ beyond $2^1020$, "
+                          "$p = 1e-300$)")]
     certs.append(_angle_mp(log, module, "scattering_angle_mp", ANGLE_MP, ref.scattering_angle,
                            f"within $10^(1 - dps)$ relative of Theorem 5.2's angle at {len(ANGLE_MP)} points "
                            "(exact decimals, $dps = 30$ and $60$)"))
@@ -291,6 +284,19 @@ def check_angles(log, module, ref) -> list:
                              f"the ball contains Theorem 5.2's angle and carries the prec relative bits asked, at "
                              f"{len(ANGLE_BALL)} points (odd p: the angle pi)"))
     return certs
+
+
+def _angle_float(log, module, name: str, points, reference, bound, claim: str) -> Certificate:
+    """An angle's float64 route, vectorised over ``points``, against the reference enclosed at 80 bits;
+    ``bound(found)`` is the allowed error given the enclosure (``found``: the reference's tuple)."""
+    tally = Tally(name)
+    with stopwatch() as elapsed:
+        values = tally.call(f"{name} at the listed points", getattr(module, name), *(np.array(c) for c in zip(*points)))
+        for k, point in enumerate(points if values is not None else ()):
+            found = enclose(80, reference, *point)
+            tally.within(_call_text(name, point), np.asarray(values).flat[k], found and found[0],
+                         found and bound(found))
+    return tally.record(log, claim, METHOD, elapsed[0])
 
 
 def _angle_mp(log, module, name: str, points, reference, claim: str) -> Certificate:
@@ -327,19 +333,11 @@ def _general_bound(angle, Y):
 
 def check_general_angles(log, module, ref) -> list:
     """The angle of any body: the float64 route (three branches), the mp twin, the ball route."""
-    certs = []
-    tally = Tally("general_scattering_angle")
-    with stopwatch() as elapsed:
-        values = tally.call("general_scattering_angle at the listed bodies", module.general_scattering_angle,
-                            *(np.array(c) for c in zip(*BODY)))
-        for k, body in enumerate(BODY if values is not None else ()):
-            found = enclose(80, ref.general_angle, *body)
-            tally.within(_call_text("general_scattering_angle", body), np.asarray(values).flat[k],
-                         found and found[0], found and _general_bound(*found))
-    certs.append(tally.record(log, f"float64 within $1e-13 (1 + abs(Y))$ (relative below an angle of 1) of the certified "
-                              f"angle at {len(BODY)} bodies: four in the proven domain, one in the ball-checked "
-                              "branch ($I22$ below $2^(-20)$ of the largest entry), one repaired (float64 has no value)",
-                              METHOD, elapsed[0]))
+    certs = [_angle_float(log, module, "general_scattering_angle", BODY, ref.general_angle,
+                          lambda found: _general_bound(*found),
+                          f"float64 within $1e-13 (1 + abs(Y))$ (relative below an angle of 1) of the certified "
+                          f"angle at {len(BODY)} bodies: four in the proven domain, one in the ball-checked "
+                          "branch ($I22$ below $2^(-20)$ of the largest entry), one repaired (float64 has no value)")]
     certs.append(_angle_mp(log, module, "general_scattering_angle_mp", BODY_MP, ref.general_angle,
                            f"within $10^(1 - dps)$ relative of the certified angle at {len(BODY_MP)} bodies (exact "
                            "decimals; $abs(Y)$ about $1e20$: 20 digits more than asked)"))
