@@ -64,9 +64,9 @@ def store_dir() -> Path:
 
 
 def cache_dir() -> Path:
-    """The build's certificate cache, as ``derivations.core.cache.cache_root`` finds it (kept in step by hand:
-    the loader must not import the derivations): ``$SUSLOV_CACHE_DIR``, else the platform's per-user cache
-    directory (``$XDG_CACHE_HOME/suslov-certified`` or ``~/.cache/suslov-certified`` on Linux)."""
+    """The build's certificate cache (``derivations.core.cache.cache_root`` calls this): ``$SUSLOV_CACHE_DIR``, else
+    the platform's per-user cache directory (``$XDG_CACHE_HOME/suslov-certified`` or ``~/.cache/suslov-certified``
+    on Linux)."""
     if os.environ.get(CACHE_ENV):
         return Path(os.environ[CACHE_ENV])
     import platformdirs

@@ -38,7 +38,6 @@ import platform
 import shutil
 from pathlib import Path
 
-import platformdirs
 
 from suslov.executor import TMP_PREFIX
 from suslov.outdir import make_dir, remove_stale
@@ -60,12 +59,10 @@ def cache_root() -> Path:
     contents or a directory above it: the build unpickles per-p results and installs trees from it (the rule of
     the per-user store, docs/trust.md).  Checked once per directory and process.
     """
+    from suslov.loader import cache_dir   # one definition: the loader checks the same directory before a build
     from suslov.manifest import refuse_shared_cache
 
-    if os.environ.get("SUSLOV_CACHE_DIR"):
-        root = Path(os.environ["SUSLOV_CACHE_DIR"])
-    else:
-        root = Path(platformdirs.user_cache_dir("suslov-certified", appauthor=False))
+    root = cache_dir()
     if root not in _TRUSTED_ROOTS:
         refuse_shared_cache(root)
         _TRUSTED_ROOTS.add(root)
