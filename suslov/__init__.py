@@ -6,7 +6,8 @@ module itself imports, can be loaded without a cycle and before ``generated/`` e
 runs the recipes).  Which generated module: :func:`active_formulas` (the checkout's
 ``generated/``, the wheel's ``suslov.formulas``, ``$SUSLOV_FORMULAS`` or :func:`use_formulas`);
 a larger p range without touching the checkout: :func:`load_formulas` (``load_formulas(pmax=101)``);
-the simulator from Python: ``suslov.simulate(scene)`` (:mod:`suslov.simulator.api`).  ``suslov.__version__``
+the simulator from Python: ``suslov.simulate(scene)`` (:mod:`suslov.simulator.api`); every certified
+formula as an object (SymPy, Mathematica, Maple, JSON): ``suslov.catalog`` (:mod:`suslov.formula_catalog`).  ``suslov.__version__``
 comes from the package metadata.
 
 Precision follows mpmath's habits everywhere: every ``*_mp`` and ``*_ball`` function and every routine
@@ -30,7 +31,7 @@ except importlib.metadata.PackageNotFoundError:   # a checkout used without inst
     __version__ = "0+unknown"
 
 
-_OWN = ["active_formulas", "load_formulas", "use_formulas", "simulate"]
+_OWN = ["active_formulas", "load_formulas", "use_formulas", "simulate", "catalog"]
 
 
 def _public_names() -> list[str]:
@@ -46,6 +47,13 @@ def __getattr__(name: str):
         from suslov.simulator.api import simulate
 
         return simulate
+    if name == "catalog":    # the formula catalog of the module in use (suslov.formula_catalog)
+        from suslov.formula_catalog import catalog_of
+
+        try:
+            return catalog_of(active_formulas())
+        except FileNotFoundError as error:   # a tree built before the catalog: no attribute, and why
+            raise AttributeError(f"suslov.catalog: {error}") from error
     module = active_formulas()
     if name in module.__all__:
         return getattr(module, name)

@@ -1,4 +1,4 @@
-"""The ``suslov`` command: ``--version`` and ``scenes`` in the core install, ``simulate`` with the ``[sim]`` extra.
+"""The ``suslov`` command: ``--version``, ``scenes`` and ``catalog`` in the core install, ``simulate`` with ``[sim]``.
 
 This module imports nothing beyond the standard library and ``suslov.__version__`` until a subcommand
 needs more, so ``suslov --version`` and ``suslov scenes`` work in a core install (NumPy, mpmath,
@@ -16,7 +16,6 @@ import sys
 import tomllib
 from pathlib import Path
 
-from suslov.extras import require
 from suslov.interrupts import listen_for_interrupts
 
 
@@ -84,7 +83,10 @@ def parser() -> argparse.ArgumentParser:
     sub = ap.add_subparsers(dest="command", required=True)
     listing = sub.add_parser("scenes", help="list the example scenes shipped with the package")
     listing.add_argument("--copy", metavar="DIR", help="copy them into DIR (refuses to overwrite)")
-    sim = sub.add_parser("simulate", help="run a scene file (needs the [sim] extra)")
+    from suslov.catalog_cli import add_parser as add_catalog
+
+    add_catalog(sub)
+    sim = sub.add_parser("simulate", help="run a scene file ([sim] for integration and figures)")
     sim.add_argument("scene", help="scene file (TOML), or the name of an example scene (suslov scenes)")
     sim.add_argument("--out", help="output directory (required unless --explain)")
     sim.add_argument("--explain", action="store_true", help="print the plan and exit without computing")
@@ -116,11 +118,12 @@ def main(argv=None) -> int:
 def _command(args) -> int:
     if args.command == "scenes":
         return _list_scenes(args)
-    try:
-        require("sim", "suslov simulate")
-    except ModuleNotFoundError as error:
-        print(f"suslov: error: {error}", file=sys.stderr)
-        return 2
+    if args.command == "catalog":
+        from suslov.catalog_cli import command
+
+        return command(args)
+    # suslov simulate: the [sim] extra is asked for per scene, by the steps its plan needs (an integrator, a
+    # figure: suslov.simulator.api.check_extras); closed forms, balls and exact decisions run on the core install
     if not Path(args.scene).exists() and args.scene in scene_files():
         args.scene = str(scene_files()[args.scene])
     from suslov.simulator.cli import simulate_command

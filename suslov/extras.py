@@ -3,9 +3,10 @@
 The core install (``pip install suslov-certified``: NumPy, mpmath, python-flint, platformdirs) evaluates
 the generated module, the run-time formulas and the balls.  The rest comes in extras, NumPy/SciPy
 style: ``[build]`` (the derivations: SymPy, symengine, Jinja2), ``[sim]`` (the simulator: SciPy,
-matplotlib, heyoka), ``[dask]`` (sweeps on a cluster), ``[docs]``, ``[test]``.  A feature that needs an
-extra calls :func:`require` first, so a core install gets ``pip install 'suslov-certified[sim]'`` instead
-of a traceback from deep inside an import.  Standard library only: every layer may import it.
+matplotlib, heyoka), ``[dask]`` (sweeps on a cluster), ``[catalog]`` (SymPy: the formula catalog's
+expressions), ``[docs]``, ``[test]``.  A feature that needs an extra calls :func:`require` first, so a
+core install gets ``pip install 'suslov-certified[sim]'`` instead of a traceback from deep inside an
+import.  Standard library only: every layer may import it.
 
 >>> missing("build") in ([], ["sympy"], ["symengine"], ["jinja2"], ["sympy", "symengine", "jinja2"]) or True
 True
@@ -20,6 +21,7 @@ EXTRAS = {
     "build": ("sympy", "symengine", "jinja2", "loky"),
     "sim": ("scipy", "matplotlib", "heyoka", "loky"),
     "dask": ("dask", "distributed"),
+    "catalog": ("sympy",),
 }
 # what drawing or saving a simulator figure needs of [sim] (Result.plot, Result.save, simulate(out=...))
 FIGURES = ("matplotlib",)

@@ -34,6 +34,7 @@ from suslov.kernel.kimura import GaloisGroup, exact_body, exact_invariants
 from suslov.kernel.kimura import galois_group as _galois_group
 from suslov.kernel.local_behaviour import LocalBehaviour
 from suslov.kernel.local_behaviour import local_behaviour as _local_behaviour
+from suslov.kernel.reprs import hypergeometric_html, hypergeometric_latex
 from suslov.kernel.validate import MAX_ENTRY_BITS  # noqa: F401 (the one size limit of exact input, named here too)
 from suslov.kernel.validate import PREC_RANGE, ball_prec, mp_dps, precision, renamed_keywords, shown
 from suslov.loader import gf
@@ -86,6 +87,12 @@ class HypergeometricForm:
     exponent_differences: dict    # of the spinor lift: "s=i" -> kappa, "s=-i" -> mu, "s=oo" -> i U
     gauss_exponent_differences: tuple   # (1 - C, C - A - B, A - B) up to sign: (kappa, mu, 1 + i U)
     exact: dict | None            # exact input: U^2, Re w_-^2 (Fractions), Im w_-^2 = q sqrt(R) as (q, R)
+
+    def _repr_latex_(self) -> str:   # notebooks: the equation, A, B, C and the exact invariants (suslov.kernel.reprs)
+        return hypergeometric_latex(self)
+
+    def _repr_html_(self) -> str:
+        return hypergeometric_html(self)
 
 
 def hypergeometric_form(I11, I22, I13, I23, dps: int | None = None, prec: int | None = None) -> HypergeometricForm:

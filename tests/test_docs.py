@@ -34,6 +34,7 @@ GALLERY = {
     "plot_work_precision": 1,
     "plot_first_integral": 1,
     "plot_general_body_study": 1,
+    "plot_catalog_tour": 1,
 }
 
 

@@ -1,9 +1,10 @@
 """The generated LaTeX documents compile with pdflatex to publication standard (issue 14).
 
 Both documents (``suslov_formulas.tex`` and its companion ``certificates.tex``) are compiled
-from the committed ``generated/`` into a temporary directory; the logs must show no overfull
-box wider than 1 pt, no missing character and no font substitution, and the formulas
-document of the default build stays within 21 pages.  Skipped only outside CI when pdflatex
+from the committed ``generated/`` into a temporary directory (with the volatile cost table
+``certificate_costs.tex`` where a build left it, a document of its own); the logs
+must show no overfull box wider than 1 pt, no missing character and no font substitution, and the
+formulas document of the default build stays within 26 pages.  Skipped only outside CI when pdflatex
 is missing; under CI (CI=true) a missing pdflatex is a failure.
 """
 import os
@@ -14,7 +15,8 @@ import pytest
 from derivations.output import pdf
 from derivations.output.pipeline import GENERATED
 
-MAX_PAGES = 21   # 20 until the Proposition 4.1 triangle errata row (issue 34)
+MAX_PAGES = 26   # 20 until the Proposition 4.1 triangle errata row (issue 34), 21 until the table of contents,
+                 # the hypotheses lines, display-style table cells and the bibliography (24 then)
 
 
 @pytest.fixture(scope="module")
@@ -27,7 +29,8 @@ def compiled(tmp_path_factory):
 
 
 def test_both_documents_compile(compiled):
-    assert [p.name for p in compiled] == ["suslov_formulas.pdf", "certificates.pdf"]
+    assert [p.name for p in compiled[:2]] == ["suslov_formulas.pdf", "certificates.pdf"]
+    assert [p.name for p in compiled[2:]] in ([], ["certificate_costs.pdf"])
     for document in compiled:
         log = document.with_suffix(".log").read_text(encoding="latin-1")
         assert "Undefined control sequence" not in log

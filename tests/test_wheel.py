@@ -57,4 +57,8 @@ def textwrap_check(site: Path) -> str:
             f"assert _s.__file__.startswith({str(site)!r}), _s.__file__\n"
             f"assert _s.active_formulas().__file__.startswith({str(site)!r})\n"
             f"assert _u.find_spec('generated') is None and _u.find_spec('derivations') is None\n"
+            # issue 47: the catalog's formulas from the wheel's own verified catalog.json
+            f"_P = _s.catalog['first_integrals'](p=5).expr\n"
+            f"assert [str(e.lhs) for e in _P] == ['P1', 'P2', 'P3'], _P\n"
+            f"assert _s.catalog['general_angle'].expr is not None\n"
             f"print('from the wheel')\n")

@@ -105,7 +105,7 @@ def parser() -> argparse.ArgumentParser:
                          "(default build/pdf/, outside the tracked tree); generated/ gets no by-products")
     ap.add_argument("--diff", metavar="OLD", default=None,
                     help="compare OLD (a git revision or a generated directory) with generated/ (or --out DIR), "
-                         "without rebuilding: list the formulas, tables, certificates and errata that changed and "
+                         "without rebuilding: list changed formulas, tables, certificates, errata (in Unicode) and "
                          "write a latexdiff PDF of the formulas document into build/diff/ (needs latexdiff)")
     ap.add_argument("--ball-checks", choices=BALL_CHECKS, default=BuildOptions().ball_checks,
                     help="how many seeded bodies corroborate the analytic step of the general scattering angle "

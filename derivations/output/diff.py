@@ -16,9 +16,18 @@ nothing is checked out).  The report names what changed, by what a reader recogn
   change of a table);
 * **certificates**: from ``certificates.json``, matched by (derivation, paper label, claim), not
   by key (keys are sequence numbers and shift when a certificate is inserted); the unmatched ones
-  of one (derivation, label) are then paired by claim similarity (``difflib`` ratio >= 0.6, best
-  pairs first) and reported as *reworded*, with any change of outcome or method; what is left is
-  added or removed; errata rows by label: added, removed, status changed.
+  of one (derivation, label) are paired first by meaning (the same words and, formula by formula,
+  the same mathematics for SymPy: :func:`~derivations.output.diff_text.same_meaning`) -- a claim
+  only *reprinted* (``i*pi*(1/2)`` then, ``pi*i/2`` now) is counted, not listed, unless its outcome
+  or method changed -- then by claim similarity (``difflib`` ratio >= 0.6, best pairs first) and
+  reported as *reworded*, with any change of outcome or method; what is left is added or removed;
+* **errata** rows by label: added, removed, changed (status, printed form, derived form, note; a
+  note only reprinted is counted with the claims).
+
+The report (:func:`report`) is for a reader: every formula of a claim, method or note in Unicode
+(:func:`~derivations.output.diff_text.render`: ``∂p/∂z``, ``I₁₃ ≠ 0``, ``π·i/2``, never ``**`` or
+``Derivative(``), the LaTeX of titles and errata forms too, lines wrapped at 100 columns, old and new
+side by side with the words that differ (``changed: «20» → «4»``).
 
 Then ``latexdiff --flatten`` marks the changes in the formulas document and in the certificates
 document (``--append-textcmd=certkey``, so a changed key is marked too, not hidden inside the
@@ -35,6 +44,9 @@ import subprocess
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from derivations.output.diff_latex import latex_text
+from derivations.output.diff_text import changed_words, meaning, render, same_meaning, wrap
 
 DOCUMENT = "suslov_formulas.tex"
 DOCUMENTS = (DOCUMENT, "certificates.tex")   # the PDFs latexdiff marks
@@ -58,9 +70,11 @@ class TreeDiff:
     tables: list = field(default_factory=list)
     certificates: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": [], "reworded": []})
     errata: dict = field(default_factory=lambda: {"added": [], "removed": [], "changed": []})
+    reprinted: list = field(default_factory=list)   # ("certificate" or "erratum", old, new): same meaning, new print
 
     def empty(self) -> bool:
-        """No formula, table, certificate or erratum changed (files may still differ: renumbered keys)."""
+        """No formula, table, certificate or erratum changed (files may still differ: renumbered keys, claims
+        reprinted without change of meaning)."""
         return not (self.tables or any(self.formulas.values()) or any(self.certificates.values())
                     or any(self.errata.values()))
 
@@ -88,7 +102,9 @@ def materialise(old: str, repository: Path, into: Path) -> Path:
     return into
 
 
-_DISPLAY = re.compile(r"\\begin\{(gather|equation)\*\}(.*?)\\end\{\1\*\}", re.S)
+# numbered (gather) or not (gather*): the label and number commands are not part of the formula
+_DISPLAY = re.compile(r"\\begin\{(gather|equation)(\*?)\}(.*?)\\end\{\1\2\}", re.S)
+_NUMBERING = re.compile(r"\\(?:notag|nonumber)\b|\\label\{[^}]*\}")
 
 
 def _braced(text: str, start: int) -> str:
@@ -117,12 +133,8 @@ def formula_paragraphs(body: str) -> dict[str, str]:
             continue
         end = marks[index + 1][0] if index + 1 < len(marks) else len(body)
         display = _DISPLAY.search(body, position, end)
-        out[f"{section} / {title}"] = "".join(display.group(2).split()) if display else ""
+        out[f"{section} / {title}"] = "".join(_NUMBERING.sub("", display.group(3)).split()) if display else ""
     return out
-
-
-def _certificate_index(document: dict) -> dict:
-    return {(c["derivation"], c["label"], c["claim"]): c for c in document.get("certificates", [])}
 
 
 def _pair_reworded(removed: list, added: list) -> tuple[list, list, list]:
@@ -184,49 +196,165 @@ def compare(old: Path, new: Path) -> TreeDiff:
             ops = list(difflib.ndiff(a, b))
             result.tables.append((name, sum(o.startswith("+ ") for o in ops), sum(o.startswith("- ") for o in ops)))
     docs = [json.loads(_read(d, "certificates.json") or "{}") for d in (old, new)]
-    c_old, c_new = (_certificate_index(d) for d in docs)
-    reworded, removed, added = _pair_reworded([c_old[k] for k in c_old if k not in c_new],
-                                              [c_new[k] for k in c_new if k not in c_old])
-    result.certificates.update(added=added, removed=removed, reworded=reworded)
-    result.certificates["changed"] = [(c_old[k], c_new[k]) for k in c_new if k in c_old and
-                                      (c_old[k]["outcome"], c_old[k]["method"]) != (c_new[k]["outcome"],
-                                                                                    c_new[k]["method"])]
+    _compare_certificates(result, *(d.get("certificates", []) for d in docs))
     e_old, e_new = ({e["label"]: e for e in d.get("errata", [])} for d in docs)
     result.errata["added"] = [e_new[k] for k in e_new if k not in e_old]
     result.errata["removed"] = [e_old[k] for k in e_old if k not in e_new]
-    content = ("status", "printed", "derived", "note")   # certificate keys are sequence numbers: not compared
-    result.errata["changed"] = [(e_old[k], e_new[k]) for k in e_new if k in e_old and
-                                [e_old[k].get(f) for f in content] != [e_new[k].get(f) for f in content]]
+    for k in (k for k in e_new if k in e_old):
+        if erratum_fields(e_old[k], e_new[k]):
+            result.errata["changed"].append((e_old[k], e_new[k]))
+        elif e_old[k].get("note") != e_new[k].get("note"):
+            result.reprinted.append(("erratum", e_old[k], e_new[k]))
     return result
 
 
+def _same_result(a: dict, b: dict) -> bool:
+    """The same outcome by the same method (its formulas compared by meaning, not by print)."""
+    return a["outcome"] == b["outcome"] and same_meaning(a["method"], b["method"])
+
+
+def _pair_same_meaning(removed: list, added: list) -> tuple[list, list, list]:
+    """Pairs (old, new) of one (derivation, label) whose claims say the same (:func:`same_meaning`: the words and,
+    formula by formula, the mathematics); returns (pairs, still removed, still added)."""
+    def words(c: dict) -> tuple:   # what two claims of the same meaning share: their words, their number of formulas
+        prose, formulas = meaning(c["claim"])
+        return prose, len(formulas)
+
+    candidates = {}
+    for j, b in enumerate(added):
+        candidates.setdefault((b["derivation"], b["label"]), []).append(j)
+    pairs, used = [], set()
+    for a in removed:
+        for j in candidates.get((a["derivation"], a["label"]), []):   # only claims of one label are compared
+            if j not in used and words(a) == words(added[j]) and same_meaning(a["claim"], added[j]["claim"]):
+                pairs.append((a, added[j]))
+                used.add(j)
+                break
+    paired = {id(a) for a, _ in pairs}
+    return pairs, [a for a in removed if id(a) not in paired], [b for j, b in enumerate(added) if j not in used]
+
+
+def _compare_certificates(result: TreeDiff, old: list, new: list) -> None:
+    """Certificates matched by (derivation, label, claim); the unmatched paired first by meaning (a claim SymPy
+    prints differently: reprinted, or changed if its outcome or method changed), then by similarity (reworded)."""
+    c_old, c_new = ({(c["derivation"], c["label"], c["claim"]): c for c in d} for d in (old, new))
+    same, removed, added = _pair_same_meaning([c_old[k] for k in c_old if k not in c_new],
+                                              [c_new[k] for k in c_new if k not in c_old])
+    reworded, removed, added = _pair_reworded(removed, added)
+    result.certificates.update(added=added, removed=removed, reworded=reworded)
+    order = {id(c): index for index, c in enumerate(new)}
+    pairs = sorted([(c_old[k], c_new[k]) for k in c_new if k in c_old] + same, key=lambda pair: order[id(pair[1])])
+    for a, b in pairs:
+        if not _same_result(a, b):
+            result.certificates["changed"].append((a, b))
+        elif a["claim"] != b["claim"] or a["method"] != b["method"]:
+            result.reprinted.append(("certificate", a, b))
+
+
+def _latex_key(text) -> str:
+    return "".join(str(text or "").split())
+
+
+def erratum_fields(a: dict, b: dict) -> list[str]:
+    """What changed in an erratum row: status, printed form, derived form (their LaTeX, spaces aside), note (by
+    meaning: a note SymPy prints differently is not a changed note)."""
+    fields = ["status"] if a.get("status") != b.get("status") else []
+    fields += [name for key, name in (("printed", "printed form"), ("derived", "derived form"))
+               if _latex_key(a.get(key)) != _latex_key(b.get(key))]
+    if not same_meaning(str(a.get("note") or ""), str(b.get("note") or "")):
+        fields.append("note")
+    return fields
+
+
+def _shown(text) -> str:
+    return render(text, keep_together=True)
+
+
+def _label(item: dict) -> str:
+    return item["label"].replace("->", "→")   # t->z: the paper's label, read
+
+
+def _certificate_line(kind: str, c: dict, outcome: bool = True) -> list[str]:
+    return wrap(f"certificate {kind}: [{_label(c)}] {_shown(c['claim'])}" + (f" ({c['outcome']})" if outcome else ""))
+
+
+def _result(c: dict) -> str:
+    return f"{c['outcome']} ({_shown(c['method'])})"
+
+
+def _old_and_new(what: str, old: str, new: str) -> list[str]:
+    """``old{what}: ...``, ``new{what}: ...`` and, if few words differ, which (``changed: «20» → «4»``)."""
+    lines = wrap(f"old{what}: {old}", indent=6, hanging=len(what) + 5) + wrap(f"new{what}: {new}", indent=6,
+                                                                              hanging=len(what) + 5)
+    summary = changed_words(old, new)
+    return lines + (wrap(f"changed: {summary}", indent=6, hanging=9) if summary else [])
+
+
+def _result_change(a: dict, b: dict) -> list[str]:
+    """How a certificate's outcome or method changed: the words that differ, or both in full."""
+    if a["outcome"] == b["outcome"]:
+        summary = changed_words(_shown(a["method"]), _shown(b["method"]))
+        if summary:
+            return wrap(f"method changed (outcome still {b['outcome']}): {summary}", indent=6, hanging=4)
+    return wrap("old: " + _result(a), indent=6, hanging=5) + wrap("new: " + _result(b), indent=6, hanging=5)
+
+
+def _reprinted_line(diff: TreeDiff) -> list[str]:
+    if not diff.reprinted:
+        return []
+    certificates = sum(kind == "certificate" for kind, _, _ in diff.reprinted)
+    notes = len(diff.reprinted) - certificates
+    parts = ([f"{certificates} certificate" + "s" * (certificates != 1)] if certificates else []) + (
+        [f"{notes} errata note" + "s" * (notes != 1)] if notes else [])
+    what = " and ".join(parts)
+    return wrap(f"{what} reprinted without change of meaning (the same words and, by SymPy, the same formulas, "
+                f"printed differently): not listed")
+
+
 def report(diff: TreeDiff, old_name: str, new_name: str) -> str:
-    """The change list, one line per item (what a reader looks for first)."""
-    lines = [f"{old_name} -> {new_name}:"]
+    """The change list for a reader: formulas in Unicode (no program text), lines of at most
+    :data:`~derivations.output.diff_text.WIDTH` columns, old and new side by side where something changed."""
+    lines = [f"{old_name} → {new_name}:"]
     for kind, items in diff.files.items():
         lines += [f"  file {kind}: {name}" for name in items]
     if diff.empty():
-        if len(lines) == 1:
-            return f"{old_name} -> {new_name}: no file differs; no formula, table, certificate or erratum changed"
-        return "\n".join(lines + ["  no formula, table, certificate or erratum changed"])
+        summary = _reprinted_line(diff)
+        if len(lines) == 1 and not summary:
+            return "\n".join(wrap(f"{old_name} → {new_name}: no file differs; no formula, table, certificate or "
+                                   "erratum changed", indent=0))
+        return "\n".join(lines + wrap("no formula, table, certificate or erratum changed") + summary)
     for kind, items in diff.formulas.items():
-        lines += [f"  formula {kind}: {k}" for k in items]
+        for key in items:
+            lines += wrap(f"formula {kind}: {latex_text(key)}")
     lines += [f"  table changed: {name} (+{plus} -{minus} lines)" for name, plus, minus in diff.tables]
-    lines += [f"  certificate added: [{c['label']}] {c['claim']} ({c['outcome']})" for c in diff.certificates["added"]]
-    lines += [f"  certificate removed: [{c['label']}] {c['claim']}" for c in diff.certificates["removed"]]
-    lines += [f"  certificate reworded: [{a['label']}] {a['claim']!r} -> {b['claim']!r}"
-              + ("" if (a["outcome"], a["method"]) == (b["outcome"], b["method"])
-                 else f"; {a['outcome']} ({a['method']}) -> {b['outcome']} ({b['method']})")
-              for a, b in diff.certificates["reworded"]]
-    lines += [f"  certificate changed: [{a['label']}] {a['claim']}: {a['outcome']} ({a['method']}) -> {b['outcome']} "
-              f"({b['method']})" for a, b in diff.certificates["changed"]]
-    lines += [f"  erratum added: {e['label']} ({e['status']})" for e in diff.errata["added"]]
-    lines += [f"  erratum removed: {e['label']}" for e in diff.errata["removed"]]
-    lines += [f"  erratum changed: {a['label']} ("
-              + (f"{a['status']} -> {b['status']}" if a["status"] != b["status"] else f"still {b['status']}; "
-                 + ", ".join(f for f in ("printed", "derived", "note") if a.get(f) != b.get(f)) + " changed") + ")"
-              for a, b in diff.errata["changed"]]
-    return "\n".join(lines)
+    for c in diff.certificates["added"]:
+        lines += _certificate_line("added", c)
+    for c in diff.certificates["removed"]:
+        lines += _certificate_line("removed", c, outcome=False)
+    for a, b in diff.certificates["reworded"]:
+        lines += wrap(f"certificate reworded: [{_label(b)}]") + _old_and_new("", _shown(a["claim"]), _shown(b["claim"]))
+        if not _same_result(a, b):
+            lines += _result_change(a, b)
+    for a, b in diff.certificates["changed"]:
+        lines += _certificate_line("changed", b, outcome=False) + _result_change(a, b)
+    for e in diff.errata["added"]:
+        lines += wrap(f"erratum added: {_label(e)} ({e['status']}): {_shown(e.get('note') or '')}")
+    lines += [f"  erratum removed: {_label(e)}" for e in diff.errata["removed"]]
+    for a, b in diff.errata["changed"]:
+        fields = erratum_fields(a, b)
+        status = f"status {a['status']} → {b['status']}" if "status" in fields else f"still {b['status']}"
+        changed = [f for f in fields if f != "status"]
+        lines += wrap(f"erratum changed: {_label(b)} ({status}" + (f"; {', '.join(changed)} changed" if changed else "")
+                      + ")")
+        for key, name in (("printed", "printed form"), ("derived", "derived form")):
+            if name in fields:
+                lines += wrap(f"old {name}: {latex_text(a.get(key) or '')}", indent=6, hanging=4)
+                lines += wrap(f"new {name}: {latex_text(b.get(key) or '')}", indent=6, hanging=4)
+        if "note" in fields:
+            lines += _old_and_new(" note", _shown(a.get("note") or ""), _shown(b.get("note") or ""))
+        else:
+            lines += wrap("note (unchanged): " + _shown(b.get("note") or ""), indent=6, hanging=10)
+    return "\n".join(lines + _reprinted_line(diff))
 
 
 def latexdiff_pdf(old: Path, new: Path, outdir: Path, document: str = DOCUMENT) -> Path:

@@ -7,11 +7,19 @@ by-products that a user leaves in ``generated/`` by compiling in place (``*.aux`
 ``*.log``, ``*.pdf``, ...) are not build outputs: ``--check`` ignores them and a rebuild
 keeps them (:data:`TEX_BYPRODUCTS`, used by ``derivations.output.pipeline``).
 
-The two passes are run here rather than by latexmk (issue 36 asked): the documents have no
-bibliography or index, so the pass count is fixed, and the runner's real work is reading the log
-(overfull boxes, missing characters) and keeping every by-product out of ``generated/``.  latexmk
-runs a confirming third pass: 10.4 s beside 7.9 s for both documents, medians of 5 interleaved runs
+The passes are run here rather than by latexmk (issue 36 asked): the bibliography is a
+``thebibliography`` (no BibTeX), so the only reruns are LaTeX's own (table of contents, citations,
+longtable widths, hyperref's outline): two passes, then more while the log asks for a rerun (at most
+:data:`MAX_PASSES`); the runner's real work is reading the log (overfull boxes, missing characters) and
+keeping every by-product out of ``generated/``.  latexmk runs a confirming pass: 10.4 s beside 7.9 s for
+both documents before they had a table of contents, medians of 5 interleaved runs
 (``python bench/bench_pdf_runner.py``, ``bench/results/pdf_runner.md``).
+
+The documents are ``suslov_formulas.tex`` and ``certificates.tex`` (:data:`DOCUMENTS`, always) and the
+cost table ``certificate_costs.tex`` (:data:`OPTIONAL_DOCUMENTS`: volatile, compiled where the build left
+it).  They link into each other by file name (``certificates.pdf#cert.KEY``, ``suslov_formulas.pdf#formula.KEY``),
+so they are compiled into one directory; :func:`link_annotations` and :func:`named_destinations` read
+those links and their targets back from the PDFs.
 """
 from __future__ import annotations
 
@@ -19,10 +27,14 @@ import fnmatch
 import re
 import shutil
 import subprocess
+import zlib
 from pathlib import Path
 
 TEX_BYPRODUCTS = ("*.aux", "*.log", "*.pdf", "*.out", "*.toc", "*.fls", "*.fdb_latexmk", "*.synctex.gz", "*.dvi")
 DOCUMENTS = ("suslov_formulas.tex", "certificates.tex")
+OPTIONAL_DOCUMENTS = ("certificate_costs.tex",)   # volatile: compiled when present
+MAX_PASSES = 4
+RERUN = re.compile(r"Rerun to get|Rerun LaTeX|\(rerunfilecheck\).*Rerun|Label\(s\) may have changed")
 
 
 OVERFULL = re.compile(r"Overfull \\hbox \(([\d.]+)pt too wide\) (?:in paragraph at lines (\d+)--\d+|in alignment at "
@@ -89,24 +101,80 @@ def is_byproduct(name: str) -> bool:
     return any(fnmatch.fnmatch(name, pattern) for pattern in TEX_BYPRODUCTS)
 
 
+def compile_document(cwd: Path, document: str | Path, outdir: Path, passes: int = 2) -> Path:
+    """Run pdflatex on ``document`` in ``cwd`` (where its ``\\input`` files are) into ``outdir``: ``passes``
+    runs, more while the log asks for a rerun, up to :data:`MAX_PASSES`.  Returns the PDF; raises
+    :class:`PdfError` naming the log when pdflatex fails."""
+    if shutil.which("pdflatex") is None:
+        raise PdfError("pdflatex not found (Debian: apt-get install texlive-latex-base)")
+    log = Path(outdir) / Path(document).with_suffix(".log").name
+    for run in range(MAX_PASSES):
+        proc = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error",
+                               f"-output-directory={outdir}", str(document)], cwd=cwd, capture_output=True,
+                              text=True, timeout=600)
+        if proc.returncode != 0:
+            raise PdfError(f"pdflatex failed on {Path(document).name}; see {log}")
+        if run + 1 >= passes and not RERUN.search(log.read_text(encoding="latin-1")):
+            break
+    return Path(outdir) / Path(document).with_suffix(".pdf").name
+
+
 def compile_pdfs(source: Path, outdir: Path, passes: int = 2) -> list[Path]:
-    """Compile the documents of ``source`` into ``outdir``; returns the PDFs written."""
+    """Compile the documents of ``source`` into ``outdir`` (:func:`compile_document`); returns the PDFs
+    written, :data:`DOCUMENTS` first, then the cost table where the build left one that is a document (a
+    cost table written before it became one, an ``\\input`` fragment, is not compiled)."""
     if shutil.which("pdflatex") is None:
         raise PdfError("pdflatex not found (Debian: apt-get install texlive-latex-base)")
     source, outdir = Path(source).resolve(), Path(outdir).resolve()
     outdir.mkdir(parents=True, exist_ok=True)
-    written = []
     for document in DOCUMENTS:
         if not (source / document).is_file():
             raise PdfError(f"{source / document}: no such document (build first)")
-        for _ in range(passes):
-            proc = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error",
-                                   f"-output-directory={outdir}", document], cwd=source, capture_output=True,
-                                  text=True, timeout=600)
-            if proc.returncode != 0:
-                raise PdfError(f"pdflatex failed on {document}; see {outdir / Path(document).with_suffix('.log')}")
-        written.append(outdir / Path(document).with_suffix(".pdf").name)
-    return written
+    optional = tuple(d for d in OPTIONAL_DOCUMENTS if (source / d).is_file()
+                     and "\\documentclass" in (source / d).read_text(encoding="utf-8"))
+    return [compile_document(source, document, outdir, passes) for document in DOCUMENTS + optional]
+
+
+_STREAM = re.compile(rb"stream\r?\n(.*?)\r?\nendstream", re.S)
+_LINK = re.compile(rb"/Subtype\s*/Link\b(.*?)>>\s*>>", re.S)
+_ACTION = re.compile(rb"/S\s*/(GoToR|GoTo|URI)\b")
+_STRING = {key: re.compile(rb"/" + key + rb"\s*\(((?:[^()\\]|\\.)*)\)") for key in (b"F", b"D", b"URI")}
+
+
+def pdf_objects(data: bytes) -> bytes:
+    """The PDF's bytes with every Flate stream decompressed after it (pdfTeX packs annotations into object
+    streams): enough to find annotation dictionaries with a regular expression, no PDF library needed."""
+    parts = [data]
+    for match in _STREAM.finditer(data):
+        try:
+            parts.append(zlib.decompress(match.group(1)))
+        except zlib.error:
+            continue      # an image, a font: not Flate or not whole
+    return b"\n".join(parts)
+
+
+def link_annotations(pdf: Path) -> list[dict]:
+    """The link annotations of a pdfTeX PDF: ``{"action": "GoTo" | "GoToR" | "URI", "file": ..., "dest": ...,
+    "uri": ...}`` (absent parts are None), in the order they are stored."""
+    links = []
+    for match in _LINK.finditer(pdf_objects(Path(pdf).read_bytes())):
+        body = match.group(1)
+        action = _ACTION.search(body)
+        found = {key.decode().lower(): (m.group(1).decode("latin-1").replace("\\\\", "\\") if m else None)
+                 for key, pattern in _STRING.items() for m in [pattern.search(body)]}
+        links.append({"action": action.group(1).decode() if action else None, "file": found["f"],
+                      "dest": found["d"], "uri": found["uri"]})
+    return links
+
+
+def named_destinations(pdf: Path) -> set[str]:
+    """The named destinations of a PDF (``pdfinfo -dests``, poppler-utils): the targets links may name."""
+    if shutil.which("pdfinfo") is None:
+        raise PdfError("pdfinfo not found (Debian: apt-get install poppler-utils)")
+    proc = subprocess.run(["pdfinfo", "-dests", str(pdf)], capture_output=True, text=True, timeout=120)
+    if proc.returncode != 0:
+        raise PdfError(f"pdfinfo failed on {pdf}: {proc.stderr.strip()}")
+    return set(re.findall(r'"(.*)"\s*$', proc.stdout, re.M))
 
 
 def document_report(pdf: Path) -> tuple[int, list[str]]:

@@ -31,7 +31,7 @@ from derivations.core.certificates import CertificateLog, Outcome
 from derivations.core.statement import say, text
 from derivations.core.emit import emitted_formulas
 from derivations.core.options import BuildOptions
-from derivations.output import public_api
+from derivations.output import catalog_data, public_api
 from derivations.output.pdf import is_byproduct
 from derivations.output.render import render
 from derivations.registry import DERIVATIONS, resolve
@@ -48,6 +48,7 @@ MODULE_NEEDS = ("model", "special_case", "kovalevskaya", "meromorphic", "first_i
 OUTPUTS = (
     ("init.py.j2", "__init__.py", ()),
     ("suslov_formulas.py.j2", "suslov_formulas.py", MODULE_NEEDS),
+    ("suslov-preamble.tex.j2", "suslov-preamble.tex", ()),
     ("suslov_formulas.tex.j2", "suslov_formulas.tex", ()),
     ("formulas_body.tex.j2", "formulas_body.tex", ()),
     ("certificates.tex.j2", "certificates.tex", ()),
@@ -223,6 +224,11 @@ def context(build: Build) -> dict:
         "refuted": sum(1 for c in build.log.certificates if c.expected is Outcome.FAIL),
         "costs": [(c.key, c.claim, c.seconds) for c in build.log.certificates],
         "total_seconds": build.log.total_seconds(),
+        # the number (N) of each formula's display in the formulas document (its equation counter: every
+        # formula one number, in the document's order), and for every certificate the formulas citing it
+        "formula_numbers": {f.key: n for n, f in enumerate((f for r in results for f in r.formulas), 1)},
+        "cited_by": {c["key"]: [(f.key, n) for n, f in enumerate((f for r in results for f in r.formulas), 1)
+                                if c["key"] in f.certificates] for c in certificates},
     }
 
 
@@ -249,6 +255,7 @@ def render_into(build: Build, directory: Path, only: tuple[str, ...] | None = No
             written.append(filename)
     (directory / "certificates.json").write_text(
         json.dumps(certificate_document(build, ctx), indent=1, sort_keys=True) + "\n", encoding="utf-8")
+    (directory / catalog_data.FILENAME).write_text(catalog_data.catalog_text(build, ctx["titles"]), encoding="utf-8")
     (directory / "certificate_costs.json").write_text(
         json.dumps({k: round(s, 6) for k, _, s in ctx["costs"]}, indent=1, sort_keys=True) + "\n",
         encoding="utf-8")
@@ -257,7 +264,7 @@ def render_into(build: Build, directory: Path, only: tuple[str, ...] | None = No
         + "\n", encoding="utf-8")
     (directory / "cache_report.json").write_text(
         json.dumps(build.log.cache_report, indent=1, sort_keys=True) + "\n", encoding="utf-8")
-    return written + ["certificates.json", "certificate_costs.json", "certificate_measurements.json",
+    return written + ["certificates.json", catalog_data.FILENAME, "certificate_costs.json", "certificate_measurements.json",
                       "cache_report.json"]
 
 

@@ -284,6 +284,37 @@ def lie_residual(P: list, field: dict) -> sp.Poly:
     return sum((F3.diff(v) * _poly(rhs) for v, rhs in full.items()), _poly(0))
 
 
+# the conditions of every formula of this section (the catalog and the documents print them)
+HYPOTHESES = (r"$I_{13}=0$, with $p$, $d$ of section 4: $I_{11}=I_{22}(d^2+1)$, $I_{23}=-I_{22}d/p$", "$d>0$")
+P_NAMES = sp.symbols("P1:4")
+
+
+def catalog_form(polys) -> sp.Tuple:
+    """``(Eq(P1, ...), Eq(P2, ...), Eq(P3, ...))`` of :func:`rational_forms`' P1, P2, P3 (the formula catalog)."""
+    return sp.Tuple(*[sp.Eq(name, P, evaluate=False) for name, P in zip(P_NAMES, polys)])
+
+
+def recipe_expr() -> sp.Tuple:
+    """The construction for every odd p as SymPy: P1 = w1 F1^((p-1)/2) F(w2^2/F1) with F1 and the (derived) series
+    F of eq:pol_sol written out, P3 = -(d/p) L P1, P2 = (w2/w1)(P1 - (d/p) L P3) for the unknowns P1(w1, w2), ...
+
+    The series is :func:`hypergeometric_coefficient`'s c_j, ``(2j-1)!!/(2j)!! = binom(2j, j)/4^j`` (a finite
+    ``Sum``: SymPy's ``hyper`` does not read back from ``srepr``)."""
+    j, k = sp.symbols("j m", integer=True, nonnegative=True)
+    F1 = (d**2 + 1) * w1**2 + w2**2
+    coefficient = (sp.factorial2(2 * j - 1) / sp.factorial2(2 * j)
+                   * sp.Product(((2 * k + 1) ** 2 - p**2) * d**2 / ((2 * k + 1) ** 2 * d**2 + p**2), (k, 0, j - 1)))
+    series = sp.Sum(coefficient * (w2**2 / F1) ** j, (j, 0, (p - 1) / 2))
+    P1, P2, P3 = (sp.Function(name.name)(w1, w2) for name in P_NAMES)
+
+    def L(P):
+        return w2 / (d**2 + 1) * sp.Derivative(P, w1) - w1 * sp.Derivative(P, w2)
+
+    return sp.Tuple(sp.Eq(P1, w1 * F1 ** ((p - 1) / 2) * series, evaluate=False),
+                    sp.Eq(P3, -d / p * L(P1), evaluate=False),
+                    sp.Eq(P2, w2 / w1 * (P1 - d / p * L(P3)), evaluate=False))
+
+
 def _latex_lines(name: str, P: sp.Expr) -> str:
     """``name = term_1 + term_2 ...`` with one monomial in (w1, w2) per aligned line."""
     # P comes from rational_forms: one term per monomial in (w1, w2), its coefficient already factored
@@ -359,14 +390,22 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
             "Pochhammer symbol (a)_k = a(a+1)...(a+k) has one factor too many (the coefficients above use "
             "(a)_k = a(a+1)...(a+k-1))", *refuted["pol_sol"], proofs[3]))
 
+    # the SymPy forms of the written-out P{p} (formula catalog); the catalog's family for every certified p is
+    # written at run time from the same certified recipe (suslov.catalog_families), not stored
+    family = {p_value: catalog_form(polys) for p_value, polys in forms.items()}
     for p_value, polys in sorted(forms.items()):
         result.formula(f"P{p_value}", "eq:p1, eq:p23", f"$p={p_value}$ (one monomial per line)",
                        r"\begin{aligned}" + r"\\".join(_latex_lines(f"P_{i + 1}", P) for i, P in enumerate(polys))
-                       + r"\end{aligned}", proofs[p_value])
+                       + r"\end{aligned}", proofs[p_value], expr=family[p_value],
+                       hypotheses=[*HYPOTHESES, f"$p={p_value}$"])
     result.formula("recipe", "eq:p1, eq:p23", "Construction for every odd $p$",
                    r"P_1=\omega_1F_1^{\frac{p-1}{2}}\mathcal F_1\Big(\frac{\omega_2^2}{F_1}\Big),\quad "
                    r"P_3=-\frac{d}{p}LP_1,\quad P_2=\frac{\omega_2}{\omega_1}\Big(P_1-\frac{d}{p}LP_3\Big),\quad "
-                   r"L=\frac{\omega_2}{d^2+1}\partial_{\omega_1}-\omega_1\partial_{\omega_2}",
-                   *proofs.values())
-    result.exports.update(rows=rows, objects=objects)
+                   r"L=\frac{\omega_2}{d^2+1}\partial_{\omega_1}-\omega_1\partial_{\omega_2},\quad "
+                   r"F_1=(d^2+1)\omega_1^2+\omega_2^2,\quad "
+                   r"\mathcal F_1(z)=\sum_{j=0}^{(p-1)/2}\frac{(2j-1)!!}{(2j)!!}\prod_{m=0}^{j-1}"
+                   r"\frac{((2m+1)^2-p^2)\,d^2}{(2m+1)^2d^2+p^2}\,z^j",
+                   *proofs.values(), expr=recipe_expr(), hypotheses=[*HYPOTHESES, "$p$ a positive odd integer"])
+    result.exports.update(rows=rows, objects=objects,
+                          catalog_family_certificates={row["p"]: list(row["certificates"]) for row in rows})
     return result

@@ -32,11 +32,11 @@ import sympy as sp
 
 from derivations.core import paper
 from derivations.core.certificates import Certificate, CertificateLog, Outcome
-from derivations.core.differential import S, T
+from derivations.core.differential import S, T, t
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
-from derivations.core.symbols import I11, I13, I22, I23, w1, w2
+from derivations.core.symbols import I11, I13, I22, I23, p, w1, w2
 from derivations.sections.fuchsian_balls import DIGITS, monodromy_summary
 from derivations.sections.model import R_EXT
 
@@ -63,6 +63,53 @@ def cross(w) -> sp.Matrix:
     return sp.Matrix([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
 
 
+# the conditions on the body (printed with the formulas, and in the formula catalog)
+BODY_HYPOTHESES = (r"$I_{11},I_{22}>0$", r"$I_{12}=0$", r"$(I_{13},I_{23})\ne0$")
+U_PLANE = sp.symbols("u1 u2", real=True) + (sp.Integer(0),)
+V_PLANE = sp.symbols("v1 v2", real=True) + (sp.Integer(0),)
+
+
+def fuchs_expr() -> sp.Tuple:
+    """The fuchs display as SymPy: dgamma/dx = gamma A(x) componentwise (gamma_k(x) a row), A(x) from :func:`cross`,
+    omega = u tanh t + v sech t, x = e^t."""
+    u, v = sp.Matrix(U_PLANE), sp.Matrix(V_PLANE)
+    A = cross(-u) / x + cross(u - sp.I * v) / (x - sp.I) + cross(u + sp.I * v) / (x + sp.I)
+    gamma_x = sp.ImmutableMatrix([[sp.Function(f"gamma{k}")(x) for k in (1, 2, 3)]])
+    return sp.Tuple(sp.Eq(gamma_x.diff(x), gamma_x * sp.ImmutableMatrix(A), evaluate=False),
+                    *[sp.Eq(w, uk * sp.tanh(t) + vk * sp.sech(t), evaluate=False)
+                      for w, uk, vk in zip((w1, w2), U_PLANE, V_PLANE)],
+                    sp.Eq(x, sp.exp(t), evaluate=False))
+
+
+def exponents_expr(p_squared) -> sp.Tuple:
+    """The exponents 0, +-i sqrt(w.w) at a simple pole with residue C(w); w.w at x = +-i (residues u -+ i v) named
+    w_-+^2 as in :mod:`derivations.sections.gauss`; for I13 = 0 both are -p^2 with the certified p^2."""
+    W = sp.symbols("W1:4")
+    root = sp.sqrt(sum(w * w for w in W))
+    uu = sum(a * a for a in U_PLANE)
+    vv = sum(a * a for a in V_PLANE)
+    uv = sum(a * b for a, b in zip(U_PLANE, V_PLANE))
+    wminus, wplus = sp.symbols("wminus wplus")
+    return sp.Tuple(*[sp.Eq(sp.Symbol(f"rho{k}"), value, evaluate=False)
+                      for k, value in enumerate((0, sp.I * root, -sp.I * root), 1)],
+                    sp.Eq(wminus**2, uu - vv - 2 * sp.I * uv, evaluate=False),
+                    sp.Eq(wplus**2, uu - vv + 2 * sp.I * uv, evaluate=False),
+                    sp.Eq(wminus**2, -p**2, evaluate=False), sp.Eq(wplus**2, -p**2, evaluate=False),
+                    sp.Eq(p**2, p_squared, evaluate=False))
+
+
+def verdicts_expr(rows: list) -> sp.Tuple:
+    """One ``((I11, I22, I13, I23), Eq(Liouvillian, True | False))`` per certified verdict (the body alone if the
+    verdict is unknown)."""
+    liouvillian = sp.Symbol("Liouvillian")
+    out = []
+    for row in rows:
+        body = sp.Tuple(*[sp.Rational(value) for value in row["body"]])
+        verdict = {"SO(3,C)": sp.false, "reducible": sp.true}.get(row["verdict"])
+        out.append(sp.Tuple(body) if verdict is None else sp.Tuple(body, sp.Eq(liouvillian, verdict, evaluate=False)))
+    return sp.Tuple(*out)
+
+
 def run(log: CertificateLog, options, model_result, residue_result) -> DerivationResult:
     result = DerivationResult(NAME)
     solution = model_result.exports["solution"]
@@ -87,10 +134,16 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
                          sp.together(at_i[0] ** 2 + at_i[1] ** 2 + p_squared), FUCHS)
     result.formula("fuchs", "eq:whole", "The Poisson equations in $x=e^t$: a Fuchsian system",
                    r"\frac{d\gamma}{dx}=\gamma\,A(x),\quad A(x)=\frac{C(-u)}{x}+\frac{C(u-iv)}{x-i}+\frac{C(u+iv)}{x+i},"
-                   r"\quad \omega=u\tanh t+v\operatorname{sech}t,\ \ \gamma C(w)=\gamma\times w", c_linear, c_fuchs)
+                   r"\quad \omega=u\tanh t+v\operatorname{sech}t,\ \ \gamma C(w)=\gamma\times w", c_linear, c_fuchs,
+                   expr=fuchs_expr(), hypotheses=[*BODY_HYPOTHESES, r"$\omega=u\tanh t+v\operatorname{sech}t$: the body's solution, $u=(u_1,u_2,0)$, $v=(v_1,v_2,0)$ real",
+                                                  r"$x=e^t$"])
     result.formula("exponents_fuchs", "eq:whole", "Local exponents (residue $C(w)$)",
                    r"0,\ \pm i\sqrt{w\cdot w};\quad w\cdot w\big|_{x=\pm i}=u\cdot u-v\cdot v\mp 2i\,u\cdot v"
-                   r"\overset{I_{13}=0}{=}-p^2", c_char, c_exp)
+                   r"\overset{I_{13}=0}{=}-p^2", c_char, c_exp,
+                   expr=exponents_expr(p_squared),
+                   hypotheses=[*BODY_HYPOTHESES, r"$\rho_{1,2,3}$: the exponents at a simple pole with residue $C(w)$",
+                               r"$w_\mp^2$: $w\cdot w$ at $x=\pm i$ (residue $u\mp iv$)",
+                               r"$=-p^2$: for $I_{13}=0$, $p^2=I_{22}(I_{11}-I_{22})/I_{23}^2$"])
 
     logarithms = {row["p"]: row["verdict"] for row in residue_result.exports["log_rows"]}
     rows, verdict_certs, summaries = [], [], {}
@@ -138,7 +191,10 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
                    [r"\text{" + row["case"] + r"}:\ (" + ",".join(row["body"]) + r")\ \to\ "
                     + (r"SO(3,\mathbb C)\ (\text{not Liouvillian})" if row["verdict"] == "SO(3,C)" else
                        r"\text{reducible (Liouvillian)}" if row["verdict"] == "reducible" else r"\text{unknown}")
-                    for row in rows], *verdict_certs, c_agree)
+                    for row in rows], *verdict_certs, c_agree,
+                   expr=verdicts_expr(rows),
+                   hypotheses=[r"$(I_{11},I_{22},I_{13},I_{23})$: the listed bodies", r"$I_{12}=0$",
+                               r"$\det I=1$ (fixes $I_{33}$)", r"the group over $\mathbb C(x)$, $x=e^t$"])
     result.errata.append(erratum(
         paper.CONCLUSION_EVEN, "corrected",
         r"\text{even }p:\ \text{logarithms at }t_0=i\pi/2;\ \mathrm{Gal}=SO(3,\mathbb C)",

@@ -16,7 +16,7 @@ Method
    with the printed p(z), q(z); then ``r = p'/2 + p^2/4 - q = P/Q`` (eq:rlin),
    compared with the printed ``p_0 ... p_8`` and ``Q``.
 3. *Singular points and exponent differences*: ``Q`` vanishes at s0 = 0,
-   s1,2 = +-i, s3,4 = -i(c -+ d); at a double pole ``r ~ rho0/(z-s)^2`` the
+   s1,2 = +-i, s3,4 = -i(c +- d); at a double pole ``r ~ rho0/(z-s)^2`` the
    exponent difference satisfies ``Delta^2 = 1 + 4 rho0`` (also at infinity).
 4. *Logarithms.*  With the rational parametrisation ``c = (m^2+1)/(2m)``,
    ``d = (m^2-1)/(2m)`` (m > 1 covers every d > 0) all singular points lie in
@@ -54,6 +54,8 @@ from derivations.core.common_denominator import polynomial
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, cancelled, certify_zero
 from derivations.core.result import DerivationResult
+from derivations.core.differential import t
+from derivations.core.symbols import d as d_symbol
 from derivations.core.symbols import g1, g2, g3, p, w1, w2
 from derivations.core.typeset import latex
 from derivations.sections.local_obstruction import log_obstruction
@@ -236,6 +238,45 @@ def decide_logarithms(p_value: int) -> tuple[dict, float]:
     return verdict, elapsed[0]
 
 
+# the conditions of the formulas of section 5.2 (printed with them, and in the formula catalog)
+SECTION_HYPOTHESES = (r"$I_{13}=0$, with $p$, $d$ of section 4",
+                      r"$d>0$, $c=\sqrt{d^2+1}$",
+                      r"$\omega=\big(\tfrac pd\tanh t,\,-\tfrac pd\,c\operatorname{sech}t\big)$",
+                      r"$z=e^t$")
+DELTA_HYPOTHESIS = r"$\Delta_k$ up to sign: $\Delta_k^2=1+4\rho_k$ where $r\sim\rho_k/(z-s_k)^2$ (at $s_5$: $r\sim\rho_5/z^2$)"
+S_NAMES = sp.symbols("s0:6")
+DELTA_NAMES = sp.symbols("Delta0:6")
+
+
+def singular_points_expr() -> list:
+    """``Eq(s_k, ...)`` for k = 0..5: :data:`POINTS` in c, d (``m = c + d``, ``1/m = c - d`` as c^2 - d^2 = 1);
+    s5 = oo written 1/s5 = 0 (SymPy's ``Eq(s5, zoo)`` does not read back from ``srepr``)."""
+    values = [POINTS["s0"], POINTS["s1"], POINTS["s2"], POINTS["s3"].xreplace({m: cc + d_symbol}),
+              -sp.I * (cc - d_symbol)]
+    return ([sp.Eq(name, value, evaluate=False) for name, value in zip(S_NAMES, values)]
+            + [sp.Eq(1 / S_NAMES[5], 0, evaluate=False)])
+
+
+def exponent_differences_expr() -> list:
+    """``Eq(Delta_k, ...)``: the exponent differences of the display (their squares are certified, c_delta)."""
+    values = (sp.I * p / d_symbol, p, p, 2, 2, sp.I * p / d_symbol)
+    return [sp.Eq(name, value, evaluate=False) for name, value in zip(DELTA_NAMES, values)]
+
+
+def riccati_expr(A, B, C) -> sp.Tuple:
+    """The riccati display as SymPy: u, w, A, B, C, A1, B1 functions of t, A, B, C the certified ones with
+    ``omega_k = omega_k(t)``."""
+    on_t = {w1: sp.Function("omega1")(t), w2: sp.Function("omega2")(t)}
+    u, w, fA, fB, fC, fA1, fB1 = (sp.Function(name)(t) for name in ("u", "w", "A", "B", "C", "A1", "B1"))
+    return sp.Tuple(sp.Eq(u.diff(t), fA + fB * u + fC * u**2, evaluate=False),
+                    sp.Eq(fA, sp.sympify(A).xreplace(on_t), evaluate=False),
+                    sp.Eq(fB, sp.sympify(B).xreplace(on_t), evaluate=False),
+                    sp.Eq(fC, sp.sympify(C).xreplace(on_t), evaluate=False),
+                    sp.Eq(w.diff(t, 2) - fB1 * w.diff(t) - fA1 * w, 0, evaluate=False),
+                    sp.Eq(fA1, -fA * fC, evaluate=False),
+                    sp.Eq(fB1, fB + fC.diff(t) / fC, evaluate=False))
+
+
 def run(log: CertificateLog, options, special_result) -> DerivationResult:
     result = DerivationResult(NAME)
     A, B, C = riccati_coefficients()
@@ -260,7 +301,12 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                          Domain("Q(W,Wp,C,Cp,A,B)"))
     result.formula("riccati", "eq:rig, eq:ABC, eq:lin", "Riccati form and the linear equation",
                    r"\dot u=A+Bu+Cu^2,\ A=\tfrac12(\omega_2-i\omega_1),\ B=0,\ C=\tfrac12(\omega_2+i\omega_1);\quad"
-                   r"\ddot w-B_1\dot w-A_1w=0,\ A_1=-AC,\ B_1=B+\dot C/C", c_ric, c_gi, c_lin)
+                   r"\ddot w-B_1\dot w-A_1w=0,\ A_1=-AC,\ B_1=B+\dot C/C", c_ric, c_gi, c_lin,
+                   expr=riccati_expr(A, B, C),
+                   hypotheses=[r"$\omega_3=0$ (the constraint $a=e_3$), $\omega_1$ and $\omega_2$ any functions of $t$",
+                               r"$|\gamma|=1$",
+                               r"$u=\frac{\gamma_3+1}{\gamma_1-i\gamma_2}$ or $u=-\frac{\gamma_1+i\gamma_2}{\gamma_3+1}$",
+                               r"$u=-\dot w/(Cw)$, $C\ne0$"])
 
     pz, qz, N, Qd = derived_pqr()
     ppz, pqz = printed_pq()
@@ -272,8 +318,15 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     c_r = log.record(Certificate("$r = deriv(p, z)/2 + p^2/4 - q$ equals the printed $P/Q$ ($p_0$ to $p_8$, eq:Q)", "eq:rlin, eq:Q",
                                  "exact polynomial identity in Q(i)[z, c, p]", Outcome.PASS if same_r else Outcome.FAIL,
                                  elapsed[0], len(N.terms())))
+    pz_factored = sp.factor(pz)
+    w_z, y_z = sp.Function("w")(z), sp.Function("y")(z)
     result.formula("rlin", "eq:2rzedu, eq:rlin", "Reduced form $y''=r(z)y$",
-                   r"p(z)=" + latex(sp.factor(pz)) + r",\quad q(z)=" + latex(qz) + r",\quad r=\frac PQ", c_pq, c_r)
+                   r"p(z)=" + latex(pz_factored) + r",\quad q(z)=" + latex(qz) + r",\quad r=\frac PQ", c_pq, c_r,
+                   # the two equations the display's p, q and r belong to; P, Q the printed p_0..p_8 and eq:Q, certified
+                   # equal to the derived ones (c_r)
+                   expr=sp.Tuple(sp.Eq(w_z.diff(z, 2) + pz_factored * w_z.diff(z) + qz * w_z, 0, evaluate=False),
+                                 sp.Eq(y_z.diff(z, 2), P / Q * y_z, evaluate=False)),
+                   hypotheses=[*SECTION_HYPOTHESES, r"$w=y\,e^{-\frac12\int p(z)\,dz}$"])
     for item, cert in ((paper.RZEDU, c_pq), (paper.RLIN, c_r), (paper.RIG, c_ric)):
         result.errata.append(erratum(item, "confirmed", item.latex, "certified exactly", cert))
 
@@ -285,7 +338,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     Kp = ring_mp.get_field()
     points = POINTS
     d_m = (m**2 - 1) / (2 * m)
-    c_sing = certify_zero(log, "$Q$ vanishes at $s0 = 0$, s1,2 = +-i, s3,4 = -i(c -+ d)", "eq:Q",
+    c_sing = certify_zero(log, "$Q$ vanishes at $s0 = 0$, s1,2 = +-i, s3,4 = -i(c +- d)", "eq:Q",
                           [Q.xreplace(to_m).xreplace({z: pt}) for pt in points.values()], Domain("Q(m)[i]"))
     deltas = {}
     for name, pt in points.items():
@@ -297,7 +350,9 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                            "eq:Deltai", [deltas[k] - expected[k] for k in expected], Domain("Q(m,p)[i]"))
     result.formula("deltas", "eq:Q, eq:Deltai", "Singular points and exponent differences",
                    r"s_0=0,\ s_{1,2}=\pm i,\ s_{3,4}=-i(c\pm d),\ s_5=\infty;\quad \Delta_0=\Delta_5=\frac{ip}{d},\ "
-                   r"\Delta_1=\Delta_2=p,\ \Delta_3=\Delta_4=2", c_sing, c_delta)
+                   r"\Delta_1=\Delta_2=p,\ \Delta_3=\Delta_4=2", c_sing, c_delta,
+                   expr=sp.Tuple(*singular_points_expr(), *exponent_differences_expr()),
+                   hypotheses=[*SECTION_HYPOTHESES, DELTA_HYPOTHESIS, r"$s_5=\infty$ is written $1/s_5=0$"])
     result.errata.append(erratum(paper.DELTAI, "confirmed", paper.DELTAI.latex, "$Delta^2 = 1 + 4 rho0$ at each pole",
                                  c_sing, c_delta))
 
@@ -340,7 +395,13 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     result.formula("conjecture", "Conjecture 5.2", f"Logarithms at $s_1,\\dots,s_4$ for $p\\le{galois_pmax}$ (the check of the "
                    "theorem on the poles)",
                    r"s_1,s_2\text{ logarithmic}\iff p\text{ even};\quad s_3,s_4\text{ never}", c_swap, c_rot, c_mirror,
-                   *[c for c in log.certificates if c.derivation == NAME and c.label == "Conjecture 5.2"])
+                   *[c for c in log.certificates if c.derivation == NAME and c.label == "Conjecture 5.2"],
+                   # the statement's relations: the four points and their integer exponent differences (a logarithm
+                   # is possible only at a point whose exponent difference is an integer)
+                   expr=sp.Tuple(*singular_points_expr()[1:5], *exponent_differences_expr()[1:5]),
+                   hypotheses=[*SECTION_HYPOTHESES, DELTA_HYPOTHESIS, f"$p$ an integer, $1\\le p\\le{galois_pmax}$",
+                               (r"even $p$: logarithmic for all but finitely many $d>0$ (for every $d>0$ by the theorem "
+                                r"on the poles)")])
     result.notes.append(
         f"Conjecture (section 5.2) decided for every $p <= {galois_pmax}$: $s1, s2$ are logarithmic exactly for even $p$; "
         "$s3, s4$ never. The obstruction for odd $p$ vanishes identically in $m$ (all d > 0); for even $p$ it is a non-zero "

@@ -49,7 +49,7 @@ from derivations.core.differential import S, T
 from derivations.core.emit import Emitted
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
-from derivations.core.symbols import I11, I13, I22, I23, r, w1, w2
+from derivations.core.symbols import I11, I13, I22, I23, d, p, r, w1, w2
 from derivations.sections.model import R_EXT
 
 NAME = "gauss"
@@ -111,6 +111,96 @@ def invariants_emitted(certificates: tuple = ()) -> Emitted:
                    (INVARIANTS["U2"].subs(sub), INVARIANTS["a"].subs(sub), -2 * INVARIANTS["uv"].subs(sub),
                     i11**3 * i22**3 / den**2), certificates,
                    "(U^2, a, b, c2) of a body: w_-^2 = a + i b = (u - i v).(u - i v), U^2 = u.u, c2 = (u x v)_3^2.")
+
+
+# the conditions of the formulas (printed with them, and in the formula catalog)
+BODY_HYPOTHESES = (r"$I_{11},I_{22}>0$", r"$I_{12}=0$", r"$(I_{13},I_{23})\ne0$")
+OMEGA_HYPOTHESIS = r"$\omega=u\tanh t+v\operatorname{sech}t$, $u=(u_1,u_2,0)$, $v=(v_1,v_2,0)$ real"
+FRAME_HYPOTHESIS = r"the frame $u=(U,0,0)$, $v=(v_1,v_2,0)$ (a rotation about $e_3$)"
+BRANCH_HYPOTHESIS = r"$\kappa^2=-w_-^2/4$, $\mu^2=-w_+^2/4$: either root (both certified)"
+# the catalog's symbols: the components of u and v (real), i, the functions of s and z, the exponent names
+U_PLANE = sp.symbols("u1 u2", real=True) + (sp.Integer(0),)
+V_PLANE = sp.symbols("v1 v2", real=True) + (sp.Integer(0),)
+F_OF_Z = sp.Function("F")(z)
+WMINUS, WPLUS, LAMBDA, D_NAME = sp.symbols("wminus wplus Lambda D")
+A_NAME, B_NAME, C_NAME = sp.symbols("A B C")
+
+
+def _omega_of_s() -> list:
+    return [(uk * s + vk) / (1 + s**2) for uk, vk in zip(U_PLANE, V_PLANE)]
+
+
+def _dots() -> tuple:
+    """u.u, v.v, u.v of the plane vectors."""
+    return (sum(a * a for a in U_PLANE), sum(a * a for a in V_PLANE), sum(a * b for a, b in zip(U_PLANE, V_PLANE)))
+
+
+def system_expr() -> sp.Tuple:
+    """gauss_system as SymPy: dgamma/ds = gamma x Omega(s) (gamma_k(s)), Omega's partial fractions, and
+    Res_{s=oo} Omega ds = -lim s Omega(s) = -u (the residues of c_partial, c_infinity)."""
+    gamma_s = [sp.Function(f"gamma{k}")(s) for k in (1, 2, 3)]
+    omega = _omega_of_s()
+    partial = [(uk - sp.I * vk) / 2 / (s - sp.I) + (uk + sp.I * vk) / 2 / (s + sp.I) for uk, vk in zip(U_PLANE, V_PLANE)]
+    return sp.Tuple(sp.Eq(sp.ImmutableMatrix([[g.diff(s) for g in gamma_s]]), sp.ImmutableMatrix([cross(gamma_s, omega)]),
+                          evaluate=False),
+                    sp.Eq(sp.ImmutableMatrix([omega]), sp.ImmutableMatrix([partial]), evaluate=False),
+                    *[sp.Eq(-sp.Limit(s * w, s, sp.oo), -uk, evaluate=False) for w, uk in zip(omega[:2], U_PLANE)])
+
+
+def lift_expr() -> sp.Tuple:
+    """gauss_lift as SymPy: Psi' = -S(Omega) Psi (Psi_kl(s)), Psi S(gamma0) = S(gamma) Psi (the display's
+    Psi S(gamma0) Psi^-1 = S(gamma)), the exponent differences and w_-+^2, with :func:`spinor` (i for j)."""
+    Psi = sp.ImmutableMatrix(2, 2, [sp.Function(f"Psi{k}{l}")(s) for k in (1, 2) for l in (1, 2)])
+    S_ = lambda w: sp.ImmutableMatrix(spinor(w).subs(j, sp.I))  # noqa: E731
+    gamma0 = sp.symbols("gamma01:4")
+    gamma_s = [sp.Function(f"gamma{k}")(s) for k in (1, 2, 3)]
+    uu, vv, uv = _dots()
+    return sp.Tuple(sp.Eq(Psi.diff(s), -S_(_omega_of_s()) * Psi, evaluate=False),
+                    sp.Eq(Psi * S_(gamma0), S_(gamma_s) * Psi, evaluate=False),
+                    sp.Eq(kappa, sp.I / 2 * WMINUS, evaluate=False), sp.Eq(mu, sp.I / 2 * WPLUS, evaluate=False),
+                    sp.Eq(sp.Symbol("Deltainfinity"), sp.I * U, evaluate=False),
+                    sp.Eq(WMINUS**2, uu - vv - 2 * sp.I * uv, evaluate=False),
+                    sp.Eq(WPLUS**2, uu - vv + 2 * sp.I * uv, evaluate=False))
+
+
+def gauss_equation_expr() -> sp.Tuple:
+    """gauss_equation as SymPy (A, B, C named; ``run`` checks the equation against the certified one)."""
+    Fz = F_OF_Z
+    return sp.Tuple(sp.Eq(psi1, z ** (kappa / 2) * (1 - z) ** (mu / 2) * Fz, evaluate=False),
+                    sp.Eq(z, (1 + sp.I * s) / 2, evaluate=False),
+                    sp.Eq(z * (1 - z) * Fz.diff(z, 2) + (C_NAME - (A_NAME + B_NAME + 1) * z) * Fz.diff(z)
+                          - A_NAME * B_NAME * Fz, 0, evaluate=False),
+                    sp.Eq(A_NAME, (2 + kappa + mu + sp.I * U) / 2, evaluate=False),
+                    sp.Eq(B_NAME, (kappa + mu - sp.I * U) / 2, evaluate=False),
+                    sp.Eq(C_NAME, 1 + kappa, evaluate=False))
+
+
+def invariants_expr() -> sp.Tuple:
+    """gauss_invariants as SymPy, from :data:`INVARIANTS` (D named): U^2, D, r, w_-^2 = -conj(Lambda^2) and its
+    closed form ``(a - 2 i u.v)`` factored as displayed (equal to INVARIANTS' a - 2 i uv, checked here)."""
+    closed = I11 * I22 * (I11 - I22) * (I13**2 * I22 - I11 * I23**2 - 2 * sp.I * r * I13 * I23) / D_NAME**2
+    if sp.expand((closed.subs(D_NAME, DEN) - INVARIANTS["a"] + 2 * sp.I * INVARIANTS["uv"]) * DEN**2) != 0:
+        raise ArithmeticError("the displayed w_-^2 differs from the certified invariants")
+    return sp.Tuple(sp.Eq(U**2, INVARIANTS["U2"].xreplace({DEN: D_NAME}), evaluate=False),
+                    sp.Eq(D_NAME, DEN, evaluate=False), sp.Eq(r, sp.sqrt(I11 * I22), evaluate=False),
+                    sp.Eq(WMINUS**2, -sp.conjugate(LAMBDA**2), evaluate=False),
+                    sp.Eq(WMINUS**2, closed, evaluate=False))
+
+
+def exponents_expr() -> sp.Tuple:
+    """gauss_exponents as SymPy: one row ``(s, z, exponents of the lift, exponents of F)`` per singular point
+    (the point at infinity written ``oo``: Maple has no complex infinity), then the display's relations; the last three hold for I13 = 0 (p, d of section 4)."""
+    rows = sp.Tuple(sp.Tuple(sp.I, 0, sp.Tuple(kappa / 2, -kappa / 2), sp.Tuple(0, 1 - C_NAME)),
+                    sp.Tuple(-sp.I, 1, sp.Tuple(mu / 2, -mu / 2), sp.Tuple(0, C_NAME - A_NAME - B_NAME)),
+                    sp.Tuple(sp.oo, sp.oo, sp.Tuple(sp.I * U / 2, -sp.I * U / 2), sp.Tuple(A_NAME, B_NAME)))
+    uu, _, _ = _dots()
+    return sp.Tuple(rows,
+                    sp.Eq(1 - C_NAME, -kappa, evaluate=False), sp.Eq(C_NAME - A_NAME - B_NAME, -mu, evaluate=False),
+                    sp.Eq(A_NAME - B_NAME, 1 + sp.I * U, evaluate=False),
+                    sp.Eq(kappa, sp.I / 2 * WMINUS, evaluate=False), sp.Eq(mu, sp.I / 2 * WPLUS, evaluate=False),
+                    sp.Eq(mu, -sp.conjugate(kappa), evaluate=False), sp.Eq(U, sp.sqrt(uu), evaluate=False),
+                    sp.Eq(kappa, -mu, evaluate=False), sp.Eq(kappa**2, p**2 / 4, evaluate=False),
+                    sp.Eq(U, sp.Abs(p) / d, evaluate=False))
 
 
 def run(log: CertificateLog, options, model_result) -> DerivationResult:
@@ -213,28 +303,43 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     result.formula("gauss_system", "eq:whole", "The Poisson equations in $s=\\sinh t$: three singular points",
                    r"\frac{d\gamma}{ds}=\gamma\times\frac{u\,s+v}{1+s^2}=\gamma\times\Big(\frac{(u-iv)/2}{s-i}"
                    r"+\frac{(u+iv)/2}{s+i}\Big),\quad \operatorname{Res}_{s=\infty}=-u",
-                   c_sinh, c_partial, c_infinity)
+                   c_sinh, c_partial, c_infinity, expr=system_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, OMEGA_HYPOTHESIS, r"$s=\sinh t$",
+                               r"$\operatorname{Res}_{s=\infty}$: of $\Omega(s)\,ds$, i.e. $-\lim_{s\to\infty}s\,\Omega(s)$"])
     result.formula("gauss_lift", "derived", "Spinor lift and exponent differences",
                    r"\Psi'=-S(\Omega)\Psi,\ S(w)=-\tfrac i2(w_1\sigma_3+w_2\sigma_1+w_3\sigma_2),\ "
                    r"\Psi S(\gamma_0)\Psi^{-1}=S(\gamma),\quad \kappa=\tfrac i2 w_-,\ \mu=\tfrac i2 w_+,\ iU,"
                    r"\quad w_\mp^2=(u\mp iv)\cdot(u\mp iv)=|u|^2-|v|^2\mp 2i\,u\cdot v",
-                   c_algebra, c_lift, c_half, c_frame)
+                   c_algebra, c_lift, c_half, c_frame, expr=lift_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, OMEGA_HYPOTHESIS, r"$s=\sinh t$, $\Psi'=d\Psi/ds$",
+                               r"$\sigma_1,\sigma_2,\sigma_3$: the Pauli matrices", r"$U=|u|$",
+                               r"$w_-$, $w_+$: either square root"])
+    gauss_expr = gauss_equation_expr()
+    if sp.expand(gauss_expr[2].lhs.subs({sp.Symbol("A"): A_.subs(j, sp.I), sp.Symbol("B"): B_.subs(j, sp.I),
+                                         sp.Symbol("C"): C_.subs(j, sp.I)})
+                 - gauss.subs(j, sp.I).subs({F2: F_OF_Z.diff(z, 2), F1: F_OF_Z.diff(z), F0: F_OF_Z})) != 0:
+        raise ArithmeticError("the catalog form of Gauss's equation differs from the certified one")
     result.formula("gauss_equation", "eq:ghyp", "Gauss's equation for every body",
                    r"\psi_1=z^{\kappa/2}(1-z)^{\mu/2}F(z),\ z=\tfrac{1+is}2,\quad "
                    r"z(1-z)F''+\big(C-(A+B+1)z\big)F'-ABF=0,\quad A=\tfrac{2+\kappa+\mu+iU}2,\ B=\tfrac{\kappa+\mu-iU}2,\ "
                    r"C=1+\kappa",
-                   c_scalar, c_bc, c_gauss, c_points, c_exponents)
+                   c_scalar, c_bc, c_gauss, c_points, c_exponents, expr=gauss_expr,
+                   hypotheses=[*BODY_HYPOTHESES, FRAME_HYPOTHESIS, r"$s=\sinh t$, $\psi_1$: the first row of the lift $\Psi$",
+                               BRANCH_HYPOTHESIS])
     result.formula("gauss_invariants", "eq:o12", "The exponents of a body",
                    [r"U^2=\frac{I_{11}^2I_{22}^2(I_{13}^2+I_{23}^2)}{D^2},\quad D=I_{11}I_{23}^2+I_{13}^2I_{22},"
                     r"\quad r=\sqrt{I_{11}I_{22}}",
                     r"w_-^2=-\overline{\Lambda^2}=\frac{I_{11}I_{22}(I_{11}-I_{22})\big(I_{13}^2I_{22}-I_{11}I_{23}^2"
-                    r"-2i\,r\,I_{13}I_{23}\big)}{D^2}"], c_inv, c_lambda)
+                    r"-2i\,r\,I_{13}I_{23}\big)}{D^2}"], c_inv, c_lambda, expr=invariants_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, r"$\Lambda$: the Kovalevskaya exponent of the body ($m_3=i\sqrt{I_{11}I_{22}}$)"])
     result.formula("gauss_exponents", "derived", "Table of exponents (spinor lift; Gauss's F)",
                    [r"s=i\ \mapsto\ z=0:\quad \pm\tfrac{\kappa}2;\quad F:\ 0,\ 1-C=-\kappa",
                     r"s=-i\ \mapsto\ z=1:\quad \pm\tfrac{\mu}2;\quad F:\ 0,\ C-A-B=-\mu",
                     r"s=\infty\ \mapsto\ z=\infty:\quad \pm\tfrac{iU}2;\quad F:\ A,\ B\quad(A-B=1+iU)",
                     r"\kappa=\tfrac i2w_-,\ \mu=\tfrac i2w_+=-\bar\kappa,\ U=|u|;\quad I_{13}=0:\ "
-                    r"\kappa=\mu=\mp\tfrac p2,\ U=\tfrac{|p|}d"], c_half, c_exponents, c_lambda)
+                    r"\kappa=-\mu=\mp\tfrac p2,\ U=\tfrac{|p|}d"], c_half, c_exponents, c_lambda, expr=exponents_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, r"$w_+=\overline{w_-}$ (so $\mu=-\bar\kappa$)",
+                               r"$p$, $d$ of section 4 in the case $I_{13}=0$"])
 
     emit = [invariants_emitted((c_inv.key, c_lambda.key))]
     result.exports.update(emit=emit, certificates={"gauss": c_gauss.key, "invariants": c_inv.key,

@@ -51,9 +51,21 @@ from derivations.core.certificates import Certificate, CertificateLog, Outcome
 from derivations.core.emit import Emitted
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
-from derivations.core.symbols import I11, I13, I22, I23
+from derivations.core.symbols import I11, I13, I22, I23, d, p
 from derivations.sections import general_angle_balls
-from derivations.sections.gauss import INVARIANTS, I_EXT, invariants_emitted, j
+from derivations.sections.gauss import (
+    BODY_HYPOTHESES,
+    I_EXT,
+    INVARIANTS,
+    OMEGA_HYPOTHESIS,
+    U,
+    U_PLANE,
+    V_PLANE,
+    WMINUS,
+    invariants_emitted,
+    j,
+    kappa,
+)
 
 NAME = "general_angle"
 TITLE = "The scattering angle of every body in closed form"
@@ -180,6 +192,53 @@ def _kummer_connection(log: CertificateLog, ad) -> Certificate:
     return c_pairs, c_connection
 
 
+# the conditions of the formulas (printed with them, and in the formula catalog)
+DELTA_PSI = (r"$\Delta\psi\in[0,\pi]$: the angle in space between the limit rotation axes, the body axis $u/|u|$ as "
+             r"$t\to-\infty$ and as $t\to+\infty$")
+DELTA_PSI_NAME, Q_NAME = sp.Symbol("Deltapsi"), sp.Symbol("q", nonnegative=True)
+X_NAME, Y_NAME = sp.symbols("X Y", real=True)
+
+
+def evaluation_angle(q, em1=expm1):
+    """Delta psi of the evaluation form for a given q, with ``em1(x)`` for e^x - 1: the emitted code's expression
+    (``em1 = expm1``, q written out) and the catalog's (``e^x - 1`` as it is, ``q`` named)."""
+    Sb, Eb = sp.sech(h), em1(-2 * h)
+    return 2 * sp.atan2(sp.sqrt(em1(-2 * g) * em1(2 * g - 4 * h) * q / Eb**2),
+                        sp.sqrt(cc**2 * Sb**2 + sp.exp(-2 * g) * em1(2 * g - 2 * h) ** 2 * q / Eb**2))
+
+
+def angle_expr() -> sp.Tuple:
+    """general_angle as SymPy: cos^2(Delta psi/2) in tau, U (the certified real form of ``a d``), tau, kappa, w_-^2, U."""
+    uu = sum(a * a for a in U_PLANE)
+    w_minus2 = sum((a - sp.I * b) ** 2 for a, b in zip(U_PLANE, V_PLANE))
+    return sp.Tuple(sp.Eq(sp.cos(DELTA_PSI_NAME / 2) ** 2,
+                          (sp.cosh(sp.pi * U) * sp.Abs(tau) ** 2 - sp.re(tau**2)) / (2 * sp.sinh(sp.pi * U) ** 2),
+                          evaluate=False),
+                    sp.Eq(tau, 2 * sp.cos(sp.pi * kappa), evaluate=False),
+                    sp.Eq(kappa, sp.I / 2 * WMINUS, evaluate=False),
+                    sp.Eq(WMINUS**2, w_minus2, evaluate=False),
+                    sp.Eq(U, sp.sqrt(uu), evaluate=False))
+
+
+def stable_expr() -> sp.Tuple:
+    """general_angle_stable as SymPy: :func:`evaluation_angle` with e^x - 1 written out and q named, then q, h, g,
+    s, c and w_- as displayed."""
+    return sp.Tuple(sp.Eq(DELTA_PSI_NAME, evaluation_angle(Q_NAME, lambda x: sp.exp(x) - 1), evaluate=False),
+                    sp.Eq(Q_NAME, sp.tanh(h) ** 2 + ss**2 * sp.sech(h) ** 2, evaluate=False),
+                    sp.Eq(h, sp.pi * U / 2, evaluate=False),
+                    sp.Eq(g, sp.pi * (U - X_NAME) / 2, evaluate=False),
+                    sp.Eq(ss, sp.Abs(sp.sin(sp.pi * Y_NAME / 2)), evaluate=False),
+                    sp.Eq(cc, sp.Abs(sp.cos(sp.pi * Y_NAME / 2)), evaluate=False),
+                    sp.Eq(WMINUS, X_NAME + sp.I * Y_NAME, evaluate=False))
+
+
+def reduction_expr() -> sp.Tuple:
+    """general_angle_reduction as SymPy (p, d of section 4)."""
+    return sp.Tuple(sp.Eq(WMINUS**2, -p**2, evaluate=False), sp.Eq(U, sp.Abs(p) / d, evaluate=False),
+                    sp.Eq(sp.cos(DELTA_PSI_NAME / 2) ** 2,
+                          sp.cos(sp.pi * p / 2) ** 2 / sp.cosh(sp.pi * p / (2 * d)) ** 2, evaluate=False))
+
+
 def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     result = DerivationResult(NAME)
     # the ball checks need no other result: started with the build in the worker processes (PREFETCH);
@@ -272,20 +331,28 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     result.formula("general_angle", "Theorem 5.2", "Scattering angle of every body",
                    r"\cos^2\frac{\Delta\psi}2=\frac{\cosh(\pi U)\,|\tau|^2-\operatorname{Re}\tau^2}{2\sinh^2(\pi U)},"
                    r"\quad \tau=2\cos(\pi\kappa),\ \kappa=\tfrac i2 w_-,\ w_-^2=(u-iv)\cdot(u-iv),\ U=|u|",
-                   c_diag, *c_kummer, c_entry, c_real, c_traces, c_angles, c_deep)
+                   c_diag, *c_kummer, c_entry, c_real, c_traces, c_angles, c_deep, expr=angle_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, DELTA_PSI, OMEGA_HYPOTHESIS, r"$w_-$: either square root"])
+    # the evaluation form: e^x - 1 as written (each one is evaluated as expm1, the argument as atan2: see the note)
     result.formula("general_angle_stable", "Theorem 5.2", "Scattering angle of every body, evaluation form",
-                   r"\Delta\psi=2\operatorname{atan2}\Big(\sqrt{\tfrac{\operatorname{expm1}(-2g)\operatorname{expm1}(2g-4h)}"
-                   r"{\operatorname{expm1}(-2h)^2}q},\ \sqrt{c^2\operatorname{sech}^2h+\tfrac{e^{-2g}\operatorname{expm1}"
-                   r"(2g-2h)^2}{\operatorname{expm1}(-2h)^2}q}\Big),\quad q=\tanh^2h+s^2\operatorname{sech}^2h,"
+                   r"\Delta\psi=2\arg\Big(\sqrt{c^2\operatorname{sech}^2h+\tfrac{e^{-2g}(e^{2g-2h}-1)^2}{(e^{-2h}-1)^2}q}"
+                   r"+i\sqrt{\tfrac{(e^{-2g}-1)(e^{2g-4h}-1)}{(e^{-2h}-1)^2}q}\Big),\quad q=\tanh^2h+s^2\operatorname{sech}^2h,"
                    r"\quad h=\tfrac{\pi U}2,\ g=\tfrac{\pi(U-X)}2,\ s=|\sin\tfrac{\pi Y}2|,\ c=|\cos\tfrac{\pi Y}2|,"
-                   r"\ w_-=X+iY", c_stable, c_gap)
+                   r"\ w_-=X+iY", c_stable, c_gap, expr=stable_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, DELTA_PSI, OMEGA_HYPOTHESIS,
+                               r"$w_-=X+iY$ the root with $X\ge0$ (then $0<g\le h$)"])
+    result.notes.append(
+        "The evaluation form of the angle is computed (the emitted general_angle) with expm1 for every $exp(x) - 1$ "
+        "and with atan2 for the argument of the complex number: sums and products of non-negative terms, exponentials "
+        "of non-positive arguments only, so neither overflow nor cancellation.")
     result.formula("general_angle_reduction", "Theorem 5.2", "Theorem 5.2 as the case $I_{13}=0$",
                    r"w_-^2=-p^2,\ U=\frac{|p|}d:\quad \cos^2\frac{\Delta\psi}2=\frac{\cos^2(\pi p/2)}{\cosh^2(\pi p/(2d))}",
-                   c_U, c_reduction)
-    Tb, Sb, Eb = sp.tanh(h), sp.sech(h), expm1(-2 * h)
+                   c_U, c_reduction, expr=reduction_expr(),
+                   hypotheses=[(r"$I_{13}=0$, with $p$, $d$ of section 4: $p^2=I_{22}(I_{11}-I_{22})/I_{23}^2$, "
+                                r"$d^2=(I_{11}-I_{22})/I_{22}$"), r"$I_{11}>I_{22}>0$, $I_{23}\ne0$", DELTA_PSI])
+    Tb, Sb = sp.tanh(h), sp.sech(h)
     q = Tb**2 + ss**2 * Sb**2
-    angle = 2 * sp.atan2(sp.sqrt(expm1(-2 * g) * expm1(2 * g - 4 * h) * q / Eb**2),
-                         sp.sqrt(cc**2 * Sb**2 + sp.exp(-2 * g) * expm1(2 * g - 2 * h) ** 2 * q / Eb**2))
+    angle = evaluation_angle(q)
     emit = [Emitted("general_angle", (h, g, ss, cc), (), (angle,), (c_stable.key, c_real.key, c_kummer[1].key, c_angles.key),
                     "Delta psi of any body from h = pi U/2, g = pi (U - X)/2, s = |sin(pi Y/2)|, c = |cos(pi Y/2)| "
                     "(w_- = X + i Y; evaluation form).")]

@@ -26,7 +26,23 @@ import sympy as sp
 from derivations.core.certificates import Certificate, CertificateLog, Outcome
 from derivations.core.exact import Domain, certify_zero
 from derivations.core.result import DerivationResult
-from derivations.sections.gauss import I_EXT, W_MINUS2, W_PLUS2, U, j, v1, v2
+from derivations.core.symbols import I11, I22
+from derivations.sections.gauss import (
+    BODY_HYPOTHESES,
+    I_EXT,
+    LAMBDA,
+    W_MINUS2,
+    W_PLUS2,
+    WMINUS,
+    WPLUS,
+    U,
+    gauss_equation_expr,
+    j,
+    mu,
+    v1,
+    v2,
+)
+from derivations.sections.gauss import kappa as gauss_kappa
 from suslov.kernel.kimura import galois_group
 
 NAME = "general_galois"
@@ -35,6 +51,29 @@ REQUIRES = ("gauss", "fuchsian")
 
 X, Y, kappa = sp.symbols("X Y kappa")
 REAL = Domain("Q(U, v1, v2, X, Y)[i]/(i^2+1)", (I_EXT,))
+
+
+def theorem_expr() -> sp.Tuple:
+    """The theorem's relations: the condition I13 I23 (I11 - I22) = 0 (I13, I23 real, zero allowed: the project's
+    symbols are non-zero), w_-^2 = -P^2 and Lambda = P with P odd, and the Gauss equation it applies Kimura's
+    theorem to (A, B, C, kappa, mu as in :mod:`derivations.sections.gauss`)."""
+    i13, i23 = sp.symbols("I13 I23", real=True)
+    P = sp.Symbol("P", odd=True)
+    return sp.Tuple(sp.Eq(i13 * i23 * (I11 - I22), 0, evaluate=False),
+                    sp.Eq(WMINUS**2, -P**2, evaluate=False), sp.Eq(LAMBDA, P, evaluate=False),
+                    *gauss_equation_expr()[3:],
+                    sp.Eq(gauss_kappa, sp.I / 2 * WMINUS, evaluate=False), sp.Eq(mu, sp.I / 2 * WPLUS, evaluate=False))
+
+
+def proof_expr() -> sp.Tuple:
+    """The relations the proof states (c_sum, c_half): w_- = X + i Y, kappa + mu = i X, kappa - mu = -Y, and kappa
+    half-odd iff w_-^2 = -(2l + 1)^2."""
+    x_, y_ = sp.symbols("X Y", real=True)
+    ell = sp.Symbol("l", integer=True)
+    return sp.Tuple(sp.Eq(WMINUS, x_ + sp.I * y_, evaluate=False),
+                    sp.Eq(gauss_kappa + mu, sp.I * x_, evaluate=False), sp.Eq(gauss_kappa - mu, -y_, evaluate=False),
+                    sp.Eq(gauss_kappa, ell + sp.Rational(1, 2), evaluate=False),
+                    sp.Eq(WMINUS**2, -(2 * ell + 1) ** 2, evaluate=False))
 
 
 def run(log: CertificateLog, options, gauss_result, fuchsian_result) -> DerivationResult:
@@ -66,7 +105,11 @@ def run(log: CertificateLog, options, gauss_result, fuchsian_result) -> Derivati
                     r"\quad(\Lambda=P\ \text{odd})",
                     r"\mathrm{Gal}=SO(2,\mathbb C)\ \text{(reducible) then, else}\ SO(3,\mathbb C)\quad"
                     r"(\text{over }\mathbb C(e^t))",
-                    r"\text{spinor lift over }\mathbb C(\sinh t)\text{: imprimitive, resp. }SL(2,\mathbb C)"], c_conj, c_sum, c_half, c_agree)
+                    r"\text{spinor lift over }\mathbb C(\sinh t)\text{: imprimitive, resp. }SL(2,\mathbb C)"], c_conj, c_sum, c_half, c_agree,
+                   expr=theorem_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, r"$\Lambda$: the Kovalevskaya exponent, $w_-^2=-\overline{\Lambda^2}$",
+                               r"$\mathrm{Gal}$: the differential Galois group of the Poisson equations",
+                               r"$A$, $B$, $C$: Gauss's equation of the spinor lift (exponent differences $\kappa$, $\mu$, $1+iU$)"])
     result.formula("general_galois_proof", "Conclusion", "Proof (Kimura's theorem on Gauss's equation)",
                    r"\parbox{0.94\linewidth}{\small The spinor lift is gauge-equivalent over $\mathbb C(\sinh t)$ to "
                    r"Gauss's equation with exponent differences $\kappa$, $\mu$, $1+iU$; the Poisson equations are its "
@@ -82,6 +125,9 @@ def run(log: CertificateLog, options, gauss_result, fuchsian_result) -> Derivati
                    r"Poisson group is the closure of the cyclic group of the loop about $x=0$: the torus of rotations "
                    r"about $u/|u|$. Otherwise the identity component is not solvable: $SL(2,\mathbb C)$ for the lift, "
                    r"$SO(3,\mathbb C)$ for the Poisson equations.}", c_conj, c_sum, c_half,
-                   *(c for c in (log.certificates) if c.key in (keys["lift"], keys["gauss"])))
+                   *(c for c in (log.certificates) if c.key in (keys["lift"], keys["gauss"])),
+                   expr=proof_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, r"$w_+=\overline{w_-}$, so $\mu=-\bar\kappa$",
+                               r"$X$, $Y$ real, $l$ an integer"])
     result.exports.update(certificates={"agree": c_agree.key, "conj": c_conj.key})
     return result

@@ -30,13 +30,14 @@ import sympy as sp
 
 from derivations.core import flint_factor, paper
 from derivations.core.certificates import CertificateLog, Outcome
-from derivations.core.differential import S, lie_derivative
+from derivations.core.differential import S, lie_derivative, t
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, certify_zero
 from derivations.core.result import DerivationResult
 from derivations.core.symbols import d, g1, g2, g3, p, w1, w2
 from derivations.core.typeset import latex
-from derivations.sections.special_case import PD_RING
+from derivations.sections.model import of_t
+from derivations.sections.special_case import CASE, D_POSITIVE, P_REAL, PD_RING, SOLUTION
 
 NAME = "hypergeometric"
 TITLE = "Reduction to the generalised hypergeometric equation (section 5.1)"
@@ -44,6 +45,7 @@ REQUIRES = ("special_case",)
 
 z = sp.Symbol("z")
 u0, u1, u2, u3 = sp.symbols("u0:4")  # u and its z-derivatives (jet variables)
+HYPOTHESES = [CASE, D_POSITIVE, P_REAL]
 F0, F1_, F2_, F3_ = sp.symbols("F0:4")
 w = sp.Symbol("w")  # w**2 = z - 1
 
@@ -85,6 +87,11 @@ def series_3f2(alphas, betas, p_value, printed=False):
     return sp.Add(*terms)
 
 
+def linear_operator(coefficients, f, x) -> sp.Expr:
+    """``sum_k coefficients[k] f^(k)``: the left-hand side of a linear equation in the catalog's form."""
+    return sp.Add(*[m * sp.Derivative(f, (x, k)) if k else m * f for k, m in enumerate(coefficients)])
+
+
 def apply_z_operator(coefficients, f):
     return sum(m * sp.diff(f, z, k) for k, m in enumerate(coefficients))
 
@@ -109,7 +116,12 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                    [r"a_0\dddot\gamma_1+a_1\ddot\gamma_1+a_2\dot\gamma_1+a_3\gamma_1=0,\quad "
                     + r",\quad ".join(f"a_{i}={latex(flint_factor.factor(v))}" for i, v in enumerate((a0, a1))) + ",",
                     *[f"a_{i}={latex(flint_factor.factor(v))}" + ("," if i == 2 else "") for i, v in enumerate((a2, a3), 2)]],
-                   c_prep)
+                   c_prep, expr=sp.Tuple(
+                       sp.Eq(linear_operator([sp.Symbol(f"a{3 - k}") for k in range(4)], sp.Function("gamma1")(t), t), 0,
+                             evaluate=False),
+                       *[sp.Eq(sp.Symbol(f"a{i}"), of_t(flint_factor.factor(v)), evaluate=False)
+                         for i, v in enumerate((a0, a1, a2, a3))]),
+                   hypotheses=HYPOTHESES + [r"$(\omega,\gamma)(t)$ any solution of the Euler and Poisson equations"])
     result.errata.append(erratum(paper.GENHIPPREP, "confirmed", paper.GENHIPPREP.latex,
                                  "certified as an identity along the flow", c_prep))
 
@@ -142,7 +154,13 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                        PD_RING.domain)
     result.formula("gamma_1", "eq:gamma_1, t->z", "Equation in $z=4/(e^t+e^{-t})^2=\\operatorname{sech}^2t$",
                    [r"\gamma_1'''+b_1\gamma_1''+b_2\gamma_1'+b_3\gamma_1=0,\quad b_1=" + latex(b_printed[1]) + ",",
-                    r"b_2=" + latex(flint_factor.factor(b_printed[2])) + ",", r"b_3=" + latex(b_printed[3])], c_z, c_zdots, c_b)
+                    r"b_2=" + latex(flint_factor.factor(b_printed[2])) + ",", r"b_3=" + latex(b_printed[3])],
+                   c_z, c_zdots, c_b,
+                   expr=sp.Tuple(
+                       sp.Eq(linear_operator(sp.symbols("b3 b2 b1") + (1,), sp.Function("gamma1")(z), z), 0, evaluate=False),
+                       *[sp.Eq(sp.Symbol(f"b{k}"), value, evaluate=False)
+                         for k, value in ((1, b_printed[1]), (2, flint_factor.factor(b_printed[2])), (3, b_printed[3]))]),
+                   hypotheses=HYPOTHESES + [SOLUTION, r"$z=\operatorname{sech}^2t$"])
 
     # 3. gamma1 = w u, w^2 = z - 1
     r_k = [sp.Integer(1)]  # w^(k) = w r_k
@@ -158,7 +176,9 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                             "eq:genhip", [e[k] / e[3] - m[k] / m[3] for k in range(3)], QZ)
     result.formula("genhip", "eq:genhip", "Equation for $u=\\gamma_1/\\sqrt{z-1}$",
                    r"z^2(1-z)u'''+\tfrac12(4-9z)zu''+\Big[\tfrac14\Big(1+\frac{p^2}{d^2}\Big)+\tfrac14(p^2-13)z\Big]u'"
-                   r"+\tfrac18(p^2-1)u=0", c_genhip)
+                   r"+\tfrac18(p^2-1)u=0", c_genhip,
+                   expr=sp.Eq(linear_operator(m, sp.Function("u")(z), z), 0, evaluate=False),
+                   hypotheses=HYPOTHESES + [r"$\gamma_1(z)$ a solution of the equation in $z$ above"])
 
     # 4. identification with 3F2
     canon = canonical_3f2(*PARAM)
@@ -166,7 +186,11 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                            [canon[k] - m[k] for k in range(4)], QZ)
     result.formula("param", "eq:3F2, eq:param", "Parameters of the $_3F_2$",
                    r"\alpha=\Big(\tfrac12,\tfrac{1+p}{2},\tfrac{1-p}{2}\Big),\quad\beta=\Big(\frac{d-ip}{2d},\frac{d+ip}{2d}\Big)",
-                   c_param)
+                   # alpha1..3, beta1, beta2 as in eq:3F2 (a symbol "beta" would read back as sympy.beta)
+                   c_param, expr=sp.Tuple(*[sp.Eq(sp.Symbol(f"{name}{k}"), value, evaluate=False)
+                                            for name, values in (("alpha", PARAM[0]), ("beta", PARAM[1]))
+                                            for k, value in enumerate(values, 1)]),
+                   hypotheses=HYPOTHESES)
     for item in (paper.GAMMA_1, paper.GENHIP, paper.PARAM):
         result.errata.append(erratum(item, "confirmed", item.latex, "certified exactly (symbolic $p$, d)",
                                      {"eq:gamma_1": c_b, "eq:genhip": c_genhip, "eq:param": c_param}[item.label]))

@@ -46,8 +46,9 @@ from derivations.core.emit import Emitted
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero, normal_form
 from derivations.core.result import DerivationResult
-from derivations.core.symbols import I11, I13, I22, I23, g1, g2, g3, r, w1, w2
+from derivations.core.symbols import I11, I13, I22, I23, g1, g2, g3, p, r, w1, w2
 from derivations.core.typeset import latex
+from derivations.sections.model import FRAME, NONZERO_D, POSITIVE
 
 NAME = "kovalevskaya"
 TITLE = "Kovalevskaya exponents and the necessary conditions (section 3.1)"
@@ -58,6 +59,9 @@ DOMAIN = Domain("Q(I11,I22,I13,I23)[r,i]/(r^2-I11 I22, i^2+1)", (R_EXT,))
 PLAIN = Domain("Q(I11,I22,I13,I23)")
 lam = sp.Symbol("lambda")
 STATE = (w1, w2, g1, g2, g3)
+# Lambda of the paper; not named "Lambda", which sympify and the export readers take for sympy.Lambda
+Lambda = sp.Symbol("Lam")
+BRANCH = "$m_3=ir$ with $r=\\pm\\sqrt{I_{11}I_{22}}$ (either branch; $-r$ gives the conjugate point)"
 
 
 def full_field(euler: dict, poisson: dict) -> dict:
@@ -114,7 +118,12 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     result.formula("darboux", "eq:d", "Darboux point ($m_3=I_{13}\\bar\\omega_1+I_{23}\\bar\\omega_2=ir$, "
                    "$r=\\sqrt{I_{11}I_{22}}$)",
                    r"\bar\omega_1=" + latex(flint_factor.factor(point[w1])) + r",\quad\bar\omega_2="
-                   + latex(flint_factor.factor(point[w2])) + r",\quad\bar\gamma=0", c_point, c_point_scale)
+                   + latex(flint_factor.factor(point[w2])) + r",\quad\bar\gamma=0", c_point, c_point_scale,
+                   expr=sp.Tuple(*[sp.Eq(sp.Symbol(f"omegabar{k}"), flint_factor.factor(point[x]), evaluate=False)
+                                   for k, x in ((1, w1), (2, w2))],
+                                 sp.Eq(sp.ImmutableMatrix([sp.Symbol(f"gammabar{k}") for k in (1, 2, 3)]),
+                                       sp.ImmutableMatrix([point[x] for x in (g1, g2, g3)]), evaluate=False)),
+                   hypotheses=[FRAME, POSITIVE, NONZERO_D, BRANCH])
     result.errata.append(erratum(paper.EQ_D, "corrected",
                                  r"\bar\omega=-I_{11}I_{22}\times\text{printed}",
                                  "the printed point belongs to the printed gen12 (time scale -I11 I22)",
@@ -122,6 +131,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
 
     K = kovalevskaya_matrix(field, point)
     real, imag, D = lambda_squared_closed_form()
+    D_name = sp.Symbol("D")
     Lam2 = real + sp.I * imag
     with stopwatch() as elapsed:
         charpoly = sp.expand((K - lam * sp.eye(5)).det(method="berkowitz"))
@@ -134,7 +144,13 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     result.formula("exponents", "section 3.1", "Kovalevskaya exponents",
                    r"-1,\ 1,\ 2,\ 1\pm\Lambda,\quad\Lambda^2=\frac{I_{11}I_{22}(I_{11}-I_{22})(I_{11}I_{23}^2-I_{22}I_{13}^2)}"
                    r"{D^2}-2ir\frac{I_{11}I_{22}I_{13}I_{23}(I_{11}-I_{22})}{D^2},\ D=I_{11}I_{23}^2+I_{22}I_{13}^2",
-                   c_char, c_lam)
+                   c_char, c_lam,
+                   expr=sp.Tuple(sp.Eq(sp.Symbol("exponents"), sp.Tuple(-1, 1, 2, 1 + Lambda, 1 - Lambda), evaluate=False),
+                                 sp.Eq(Lambda**2, Lam2.xreplace({D: D_name}), evaluate=False),
+                                 sp.Eq(D_name, D, evaluate=False)),
+                   hypotheses=[FRAME, POSITIVE, NONZERO_D,
+                               (r"$K$ at the Darboux point above, $m_3=ir$, $r=\pm\sqrt{I_{11}I_{22}}$ ($\Lambda^2$ "
+                                "depends on the branch)")])
 
     # necessary conditions
     c_g1 = certify_zero(log, "$Im(Lambda^2) = 0$ iff $I13 I23 (I11 - I22) = 0$ (imaginary part is $-2 r I11 I22 I13 I23 "
@@ -157,7 +173,15 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                                "eq:necc11", derived_n11 - (I11 * I22) ** 2 * printed_n11, DOMAIN)
     result.formula("necessary", "eq:neccg1, eq:neccg12, eq:necc1, eq:necc11", "Necessary conditions",
                    r"I_{13}I_{23}(I_{11}-I_{22})=0,\quad \Lambda^2=p^2:\quad I_{13}=0:\ \frac{I_{22}(I_{11}-I_{22})}{I_{23}^2}=p^2,"
-                   r"\quad I_{23}=0:\ \frac{I_{11}(I_{11}-I_{22})}{I_{13}^2}=-p^2", c_g1, c_n1, c_n11)
+                   r"\quad I_{23}=0:\ \frac{I_{11}(I_{11}-I_{22})}{I_{13}^2}=-p^2", c_g1, c_n1, c_n11,
+                   # the cases I13 = 0, I23 = 0 are substitutions (Eq(I13, 0) is False for the nonzero symbol I13)
+                   expr=sp.Tuple(sp.Eq(I13 * I23 * (I11 - I22), 0, evaluate=False),
+                                 sp.Eq(Lambda**2, p**2, evaluate=False),
+                                 sp.Eq(flint_factor.factor(sp.cancel(Lam2.subs(I13, 0))), p**2, evaluate=False),
+                                 sp.Eq(flint_factor.factor(sp.cancel(-Lam2.subs(I23, 0))), -p**2, evaluate=False)),
+                   hypotheses=[FRAME, POSITIVE, NONZERO_D,
+                               r"all solutions meromorphic, so $1\pm\Lambda\in\mathbb Z$",
+                               "third relation if $I_{13}=0$, fourth if $I_{23}=0$"])
     result.errata.append(erratum(paper.NECCG1, "confirmed", paper.NECCG1.latex, "imaginary part of $Lambda^2$", c_g1))
     result.errata.append(erratum(
         paper.NECCG12, "corrected",
@@ -189,8 +213,14 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
         "$I11 = I22$: $Lambda = 0$, eigenvalue 1 has multiplicity 3 and $rank(K - Id) >= 3$: $K$ is not semi-simple",
         "section 3.1", "non-zero 3x3 minor in Q(I11,I13,I23)[i] (exact)", outcome, elapsed[0], 1,
         f"minor rows {witness[0]} cols {witness[1]} is non-zero" if witness else "no non-zero minor found"))
+    # the certificate shows rank >= 3 (a non-zero 3x3 minor), which with the multiplicity 3 of the
+    # eigenvalue 1 is what non-semi-simplicity needs (the rank is 4)
     result.formula("semisimple", "section 3.1", "The case $I_{11}=I_{22}$",
-                   r"\Lambda=0,\ \operatorname{rank}(K-\mathrm{Id})=3:\ K\text{ not semi-simple}", c_ss)
+                   r"\Lambda=0,\ \operatorname{rank}(K-\mathrm{Id})\ge3:\ K\text{ not semi-simple}", c_ss,
+                   expr=sp.Tuple(sp.Eq(Lambda, sp.sqrt(lam_same), evaluate=False),
+                                 sp.Ge(sp.Symbol("rankKminusId"), 3, evaluate=False)),
+                   hypotheses=["$I_{11}=I_{22}$", FRAME, POSITIVE, "$I_{13}\\ne0$",
+                               "$r=I_{11}$ ($m_3=ir$ at the Darboux point)"])
 
     # eq:lina: (w1, w2, g1, g2, g3) -> (-w2, -w1, g2, g1, g3) with the parameter swap
     image = {w1: -w2, w2: -w1, g1: g2, g2: g1, g3: g3}

@@ -77,6 +77,19 @@ I33_FROM_DET = (1 + I11 * I23**2 + I22 * I13**2) / (I11 * I22)
 E3 = sp.Matrix([0, 0, 1])
 
 
+# hypotheses of the formulas (printed with them, attached to their catalog entries)
+FRAME = "$I_{12}=0$"
+CONSTRAINT = "$a=e_3$, so $\\omega_3=0$"
+POSITIVE = "$I_{11},I_{22}>0$"
+NONZERO_D = "$D=I_{13}^2I_{22}+I_{23}^2I_{11}\\ne0$"
+BRANCH_R = "$r=\\pm\\sqrt{I_{11}I_{22}}$ (either branch)"
+
+
+def of_tanh_sech(expr) -> sp.Expr:
+    """An expression in the generators T, S as a function of t: T = tanh t, S = sech t."""
+    return sp.sympify(expr).subs({T: sp.tanh(t), S: sp.sech(t)})
+
+
 def inertia_tensor(i33=I33) -> sp.Matrix:
     return sp.Matrix([[I11, 0, I13], [0, I22, I23], [I13, I23, i33]])
 
@@ -84,6 +97,23 @@ def inertia_tensor(i33=I33) -> sp.Matrix:
 def hat(v: sp.Matrix) -> sp.Matrix:
     """The matrix of ``x -> v x x``."""
     return sp.Matrix([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
+
+
+def of_t(expr) -> sp.Expr:
+    """``expr`` with the state symbols omega1, omega2, gamma1..3 as undefined functions of t: the catalog's
+    form of a formula along a solution (``DerivedFormula.expr``)."""
+    return sp.sympify(expr).xreplace({s: sp.Function(s.name)(t) for s in (w1, w2, g1, g2, g3)})
+
+
+def ode(state: sp.Symbol, rhs) -> sp.Eq:
+    """``d/dt state(t) = rhs`` in the catalog's form (functions of t on both sides)."""
+    return sp.Eq(sp.Derivative(sp.Function(state.name)(t), t), of_t(rhs), evaluate=False)
+
+
+def named_matrix(name: str, rows: int, cols: int) -> sp.ImmutableMatrix:
+    """The matrix of symbols ``name11, name12, ...``: a named matrix on the left of a catalog equation
+    (``Eq(Symbol(name), matrix)`` does not survive ``sympify(srepr(...))``: SymPy evaluates it to False)."""
+    return sp.ImmutableMatrix(rows, cols, lambda i, j: sp.Symbol(f"{name}{i + 1}{j + 1}"))
 
 
 def derive_euler_field() -> tuple[dict, sp.Expr]:
@@ -119,7 +149,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
     c_det = certify_zero(log, "det I = 1 fixes $I33 = (1 + I11 I23^2 + I22 I13^2)/(I11 I22)$", "section 2",
                          inertia_tensor(I33_FROM_DET).det() - 1, RATIONAL)
     result.formula("i33", "section 2", "Normalisation $\\det\\mathbb I=1$",
-                   sp.Eq(I33, I33_FROM_DET), c_det)
+                   sp.Eq(I33, I33_FROM_DET), c_det, hypotheses=[FRAME, r"$\det\mathbb I=1$", POSITIVE])
 
     # 2. reduced Euler equations, solved from 3.25
     field, multiplier = derive_euler_field()
@@ -154,8 +184,10 @@ def run(log: CertificateLog, options) -> DerivationResult:
     entries = sorted({str(s) for v in field.values() for s in v.free_symbols} - {"omega1", "omega2"})
     result.formula("euler", "gen12", "Reduced Euler equations (derived from 3.25)",
                    r"\dot\omega_1=" + latex(field[w1]) + r",\qquad \dot\omega_2=" + latex(field[w2]),
-                   c_euler, c_gen12_scale)
-    result.formula("lambda", "3.25", "Lagrange multiplier", sp.Eq(lam, multiplier), c_euler, c_lambda)
+                   c_euler, c_gen12_scale, expr=sp.Tuple(ode(w1, field[w1]), ode(w2, field[w2])),
+                   hypotheses=[FRAME, CONSTRAINT, POSITIVE])
+    result.formula("lambda", "3.25", "Lagrange multiplier", sp.Eq(lam, multiplier), c_euler, c_lambda,
+                   hypotheses=[FRAME, CONSTRAINT, POSITIVE])
     result.notes.append(
         "Entries of the inertia tensor that appear in the reduced Euler equations: "
         + ", ".join(entries) + " (entries of $I$ itself, not of its inverse; $I33$ does not appear, "
@@ -174,7 +206,9 @@ def run(log: CertificateLog, options) -> DerivationResult:
                              RATIONAL)
     result.formula("poisson", "eq:whole", "Poisson equations",
                    r",\ ".join(r"\dot\gamma_%d=%s" % (i + 1, latex(poisson[x]))
-                               for i, x in enumerate((g1, g2, g3))), c_poisson)
+                               for i, x in enumerate((g1, g2, g3))), c_poisson,
+                   expr=sp.Tuple(*[ode(x, poisson[x]) for x in (g1, g2, g3)]),
+                   hypotheses=[CONSTRAINT, r"$\gamma$ fixed in space: $\gamma=R^Te$, $\dot R=R\hat\omega$"])
     result.errata.append(erratum(paper.WHOLE, "confirmed", paper.WHOLE.latex,
                                  "derived from $deriv(R, t) = R omegahat$, $gamma = R^T e$", c_poisson))
 
@@ -203,9 +237,10 @@ def run(log: CertificateLog, options) -> DerivationResult:
                           "eq:o12", [(I13 * solution[w1] + I23 * solution[w2]).subs({S: 0, T: s}) for s in (1, -1)],
                           WITH_R)
     result.formula("o12", "eq:o12, c's", "General solution (rate $A=1$), $r=\\pm\\sqrt{I_{11}I_{22}}$",
-                   [(r"\omega_%d" % (k + 1), solution[w].subs({T: sp.tanh(sp.Symbol("t")), S: sp.sech(sp.Symbol("t"))}))
-                    for k, w in enumerate((w1, w2))],
-                   c_uv, c_uv_sol, c_sol, *numeric_certs, c_line)
+                   [(r"\omega_%d" % (k + 1), of_tanh_sech(solution[w])) for k, w in enumerate((w1, w2))],
+                   c_uv, c_uv_sol, c_sol, *numeric_certs, c_line,
+                   expr=sp.Tuple(*[sp.Eq(of_t(w), of_tanh_sech(solution[w]), evaluate=False) for w in (w1, w2)]),
+                   hypotheses=[FRAME, POSITIVE, NONZERO_D, BRANCH_R, "rate $A=1$, $t_0=0$"])
 
     # 5. the printed general solution
     printed = paper.printed_o12(1, 1)
@@ -245,9 +280,14 @@ def run(log: CertificateLog, options) -> DerivationResult:
                              F1.subs(solution, simultaneous=True) - paper.ENLEV_VALUE, RING.domain,
                              expect=Outcome.FAIL)
     result.formula("integrals", "section 2", "First integrals",
-                   r"F_1=" + latex(sp.expand(F1)) + r",\quad F_2=" + latex(F2), c_f1, c_f1p, c_f2)
+                   r"F_1=" + latex(sp.expand(F1)) + r",\quad F_2=" + latex(F2), c_f1, c_f1p, c_f2,
+                   expr=sp.Tuple(sp.Eq(sp.Symbol("F1"), sp.expand(F1), evaluate=False),
+                                 sp.Eq(sp.Symbol("F2"), F2, evaluate=False)),
+                   hypotheses=[FRAME, CONSTRAINT])
+    # D is named in the title: the printer would spell it out (kept as TeX; expr has it written out)
     result.formula("enlev", "eq:enlev", "Energy on the normalised solution ($D=I_{13}^2I_{22}+I_{23}^2I_{11}$)",
-                   r"F_1=\frac{(I_{11}I_{22})^2}{D}", c_en)
+                   r"F_1=\frac{(I_{11}I_{22})^2}{D}", c_en, expr=sp.Eq(sp.Symbol("F1"), energy, evaluate=False),
+                   hypotheses=[FRAME, POSITIVE, NONZERO_D, r"$\omega(t)$ the general solution above, either branch of $r$"])
     result.errata.append(erratum(
         paper.ENLEV, "corrected", r"F_1=\frac{(I_{11}I_{22})^2}{I_{13}^2I_{22}+I_{23}^2I_{11}}",
         "1/D is the energy of the printed solution of the printed gen12; on the solution of the derived "

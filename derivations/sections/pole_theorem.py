@@ -44,7 +44,7 @@ Conjecture 5.2 at s1, s2 for every even p (the per-p obstruction says "all but f
    a finite set of integers): so psi1 = z^(kappa/2)(1 - z)^(mu/2) F, and with it the lift, has a logarithm,
    M = +-(I + N) with N != 0 nilpotent, and ``Ad(M^2) = Ad(I + 2N)`` is unipotent and not the identity
    (certified): a logarithm in the Poisson solutions at t0.
-7. *The paper's s3, s4* (``x = e^t = -i(c -+ d)``, c = sqrt(d^2 + 1)) are ``s = -i c``, where ``1 + s^2 = -d^2
+7. *The paper's s3, s4* (``x = e^t = -i(c +- d)``, c = sqrt(d^2 + 1)) are ``s = -i c``, where ``1 + s^2 = -d^2
    != 0``: ordinary points of the Poisson system.  The section-5.2 equation's projective monodromy there is
    the system's, trivial, so its local monodromy is a scalar: no logarithm, for every p and d.  Its s1, s2
    (``x = +-i``) are the poles: logarithmic exactly for even p.
@@ -62,7 +62,27 @@ from derivations.core.certificates import Certificate, CertificateLog, Outcome
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
 from derivations.sections.fuchsian import cross
-from derivations.sections.gauss import I_EXT, U, j, spinor
+from derivations.core.differential import t
+from derivations.core.symbols import p
+from derivations.sections.gauss import (
+    A_NAME,
+    B_NAME,
+    BODY_HYPOTHESES,
+    BRANCH_HYPOTHESIS,
+    C_NAME,
+    FRAME_HYPOTHESIS,
+    I_EXT,
+    LAMBDA,
+    WMINUS,
+    U,
+    gauss_equation_expr,
+    j,
+    kappa,
+    s,
+    spinor,
+    v1,
+    v2,
+)
 from suslov.kernel.local_behaviour import local_behaviour
 
 NAME = "pole_theorem"
@@ -89,6 +109,36 @@ def _conj(expr):
 
 def _im(expr):
     return sp.expand((expr - _conj(expr)) / (2 * j))
+
+
+def theorem_expr() -> sp.Tuple:
+    """The theorem's relations: the poles t0 of omega, the exponents 0, +-conj(Lambda) there (c_char with
+    w_-^2 = -conj(Lambda)^2), and Lambda = p for I13 = 0."""
+    t0, k = sp.Symbol("t0"), sp.Symbol("k", integer=True)
+    return sp.Tuple(sp.Eq(t0, sp.I * sp.pi / 2 + sp.I * sp.pi * k, evaluate=False),
+                    *[sp.Eq(sp.Symbol(f"rho{n}"), value, evaluate=False)
+                      for n, value in enumerate((0, sp.conjugate(LAMBDA), -sp.conjugate(LAMBDA)), 1)],
+                    sp.Eq(WMINUS**2, -sp.conjugate(LAMBDA) ** 2, evaluate=False), sp.Eq(LAMBDA, p, evaluate=False))
+
+
+def proof_expr() -> sp.Tuple:
+    """The formulas of the proof: kappa^2 = -w_-^2/4, and for even Lambda w_- = i Lambda and Gauss's A, B, C
+    (c_params); the paper's s3, s4 at s = -i c (c_s34)."""
+    return sp.Tuple(sp.Eq(kappa**2, -WMINUS**2 / 4, evaluate=False), sp.Eq(WMINUS, sp.I * LAMBDA, evaluate=False),
+                    sp.Eq(A_NAME, 1 + sp.I * U / 2, evaluate=False), sp.Eq(B_NAME, -sp.I * U / 2, evaluate=False),
+                    sp.Eq(C_NAME, 1 + kappa, evaluate=False), sp.Eq(s, -sp.I * c_, evaluate=False),
+                    sp.Eq(1 + s**2, -d_**2, evaluate=False))
+
+
+def no_painleve_expr() -> sp.Tuple:
+    """psi1 = z^(kappa/2) (1-z)^(mu/2) F(z), psi2 = (psi1' - a psi1)/b (a, b: the lift's entries in the frame
+    u = (U, 0, 0), v = (v1, v2, 0), as in gauss), z = (1 + i s)/2, s = sinh t, and Gauss's equation for F."""
+    A = -spinor([U * s + v1, v2, 0]).subs(j, sp.I) / (1 + s**2)
+    a, b = A[0, 0], A[0, 1]
+    f1, f2 = sp.Function("psi1")(s), sp.Function("psi2")(s)
+    gauss = gauss_equation_expr()
+    return sp.Tuple(sp.Eq(f1, gauss[0].rhs, evaluate=False), sp.Eq(f2, (f1.diff(s) - a * f1) / b, evaluate=False),
+                    gauss[1], sp.Eq(s, sp.sinh(t), evaluate=False), *gauss[2:])
 
 
 def run(log: CertificateLog, options, gauss_result, residue_result, galois_result, fuchsian_result) -> DerivationResult:
@@ -189,7 +239,11 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
                     r"\Lambda\ \text{odd}\ \Rightarrow\ \text{every solution meromorphic};\quad \Lambda\ \text{even}\ "
                     r"\Rightarrow\ \text{logarithms};\quad \Lambda\notin\mathbb Z\ \Rightarrow\ \text{branching}",
                     r"I_{13}=0:\ \Lambda=p\quad(\text{Theorem 3.1 and its converse; Conjecture 5.2 at }s_1,s_2\text{, for every }p)"],
-                   *proof, c_residue_agree, c_ball_agree)
+                   *proof, c_residue_agree, c_ball_agree, expr=theorem_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, r"$t_0=i\pi/2+i\pi k$, $k\in\mathbb Z$: the poles of $\omega$",
+                               r"$\rho_{1,2,3}$: the exponents of the Poisson equations at $t_0$",
+                               r"$\Lambda$: the Kovalevskaya exponent of the body",
+                               r"$\Lambda=p$: for $I_{13}=0$ ($p$ of section 4)"])
     result.formula("pole_theorem_proof", "Theorem 3.1", "Proof (local monodromy of Gauss's equation)",
                    r"\parbox{0.94\linewidth}{\small Near a pole, $s=\sinh t$ has $s\mp i\sim(t-t_0)^2$, so a loop about "
                    r"$t_0$ is two loops about $s=\pm i$, where the spinor lift has exponents $\pm\kappa/2$, "
@@ -201,7 +255,9 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
                    r"$C=1+\kappa$ an integer the equation has a logarithm at $z=0$ unless $A$ or $B$ is an integer (DLMF "
                    r"15.10(ii)), so $M=\pm(I+N)$, $N\ne0$, and $\mathrm{Ad}(M^2)$ is unipotent, not $1$. The paper's "
                    r"$s_3,s_4$ are $s=-ic$ with $1+s^2=-d^2\ne0$: ordinary points, never logarithmic.}",
-                   *proof, c_s34, c_galois_agree)
+                   *proof, c_s34, c_galois_agree, expr=proof_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, r"$\Lambda$ even for $w_-=i\Lambda$ and $A$, $B$, $C$ (then $u\cdot v=0$)",
+                               r"$s=-ic$: for $I_{13}=0$, $c=\sqrt{d^2+1}$, $d>0$"])
     keys = gauss_result.exports["certificates"]
     result.formula("no_painleve", "Conclusion", "Every solution through Gauss's ${}_2F_1$, for every $p$ (no Painlev\\'e reduction needed)",
                    r"\parbox{0.94\linewidth}{\small The Conclusion expects a Painlev\'e reduction for even $p$. Instead, "
@@ -209,7 +265,8 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
                    r"whose first row is $z^{\kappa/2}(1-z)^{\mu/2}F$ with $F$ solving Gauss's equation "
                    r"($z=(1+i\sinh t)/2$) and the second $(\psi_1'-a\psi_1)/b$: every solution of the Poisson equations "
                    r"is quadratic in ${}_2F_1$ functions and their derivatives.}",
-                   *(c for c in log.certificates if c.key in (keys["lift"], keys["gauss"])))
+                   *(c for c in log.certificates if c.key in (keys["lift"], keys["gauss"])), expr=no_painleve_expr(),
+                   hypotheses=[*BODY_HYPOTHESES, FRAME_HYPOTHESIS, BRANCH_HYPOTHESIS])
     result.exports.update(certificates={"pole": c_pole.key, "residue": c_residue.key, "square": c_square.key,
                                         "params": c_params.key, "unipotent": c_unipotent.key, "s34": c_s34.key,
                                         "residue_agree": c_residue_agree.key, "galois_agree": c_galois_agree.key,

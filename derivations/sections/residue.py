@@ -64,7 +64,15 @@ from derivations.core.result import DerivationResult
 from derivations.core.symbols import I11, I13, I22, I23, c, d, from_symengine, p, r
 from derivations.core.typeset import breakable_factors, latex, lead_and_sums
 from derivations.sections import physical_bodies
-from derivations.sections.special_case import C_EXT, PD_DOMAIN, poisson_matrix
+from derivations.sections.model import named_matrix
+from derivations.sections.special_case import (
+    C_EXT,
+    CASE,
+    D_POSITIVE,
+    P_REAL,
+    PD_DOMAIN,
+    poisson_matrix,
+)
 
 NAME = "residue"
 TITLE = "Residue matrix, gauge and logarithms at the poles of $\\omega(t)$ (section 3.2)"
@@ -310,6 +318,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
     fixed[1, 2] = a_ - sp.I * c1_ / 2
     c_am1_fixed = certify_zero(log, "eq:am1 with entry (2,3) equal to $a - i c1/2$ is the residue at $t0 = +i pi/2$", "eq:am1",
                                list(A_plus - fixed), GENERIC)
+    rho2_name = sp.Symbol("rho2")
     rho2 = sp.Rational(1, 4) * (c1_**2 + c2_**2 - 4 * (a_**2 + b_**2) + 4 * sp.I * (a_ * c1_ + b_ * c2_))
     c_ro = certify_zero(log, "$det(A0 - rho) = -rho (rho^2 - rho2^2)$ at $+i pi/2$ with $rho2^2$ of eq:ro (conjugate at "
                         "-i pi/2)", "eq:ro", [sp.expand((A_plus - rho * sp.eye(3)).det()) + rho * (rho**2 - rho2),
@@ -342,15 +351,32 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
                                  "with the derived coefficients; equivalent to the corrected eq:necc1", c_n2))
     result.formula("am1", "eq:am1, eq:ro", "Residue of $A(t)$ at $t_0=i\\pi/2$ and its eigenvalues",
                    r"A_0=" + latex(fixed) + r",\quad \rho\in\{0,\pm\rho_2\},\ \rho_2^2=\tfrac14\big(c_1^2+c_2^2-4(a^2+b^2)"
-                   r"+4i(ac_1+bc_2)\big)=\Lambda^2", c_am1_fixed, c_ro, c_link)
+                   r"+4i(ac_1+bc_2)\big)=\Lambda^2", c_am1_fixed, c_ro, c_link,
+                   expr=sp.Tuple(sp.Eq(named_matrix("A0", 3, 3), sp.ImmutableMatrix(fixed), evaluate=False),
+                                 sp.Eq(sp.Symbol("eigenvaluesA0"), sp.Tuple(0, rho2_name, -rho2_name), evaluate=False),
+                                 sp.Eq(rho2_name**2, rho2, evaluate=False),
+                                 sp.Eq(rho2_name**2, sp.Symbol("Lam")**2, evaluate=False)),
+                   hypotheses=[(r"$\omega(t)=\big(a\tanh t+\tfrac{c_1}2\operatorname{sech}t,\ "
+                                r"b\tanh t+\tfrac{c_2}2\operatorname{sech}t\big)$"),
+                               r"$t_0=i\pi/2$ (at $-i\pi/2$ the complex conjugate)",
+                               (r"last relation: $a,b,c_1,c_2$ of the general solution, $\Lambda$ of the Darboux point "
+                                r"with $-r$ for $r$")])
 
     # special case: S, gauge U, B0
     A0 = special_result.exports["A0"]
     S_printed = sp.Matrix([[-sp.I * c / d, -sp.I / c, sp.I * c / d], [1 / d, 1, -1 / d], [1, 0, 1]])
     c_S = certify_zero(log, "printed $S$: $S^-1 A0 S = diag(p, 0, -p)$ ($A0$ of eq:am2)", "eq:am2",
                        list(A0 * S_printed - S_printed * sp.diag(p, 0, -p)), PD_DOMAIN)
+    # S^-1 A0 S = diag(p, 0, -p) as A0 S = S diag(p, 0, -p) (S is invertible: det S = -2 i d/c): matrices of
+    # symbols A0ij, Sij on the left, the values of S (and of A0 in the formula special_case A0) on the right
+    S_name, A0_name = named_matrix("S", 3, 3), named_matrix("A0", 3, 3)
     result.formula("S", "eq:am2", "Diagonalisation of $A_0$", r"S^{-1}A_0S=\operatorname{diag}(p,0,-p),\ S="
-                   + latex(S_printed), c_S)
+                   + latex(S_printed), c_S,
+                   expr=sp.Tuple(sp.Eq(sp.ImmutableMatrix(A0_name * S_name),
+                                       sp.ImmutableMatrix(S_name * sp.diag(p, 0, -p)), evaluate=False),
+                                 sp.Eq(S_name, sp.ImmutableMatrix(S_printed), evaluate=False)),
+                   hypotheses=[CASE, D_POSITIVE, P_REAL, "$A_0$ the residue matrix of the case $I_{13}=0$",
+                               "$c=\\pm\\sqrt{d^2+1}$ (either branch)"])
     gauge_certs = []
     for p_value in [q for q in (2, 3) if q <= options.pmax]:
         with stopwatch() as elapsed:

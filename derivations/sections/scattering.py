@@ -47,6 +47,7 @@ import sympy as sp
 
 from derivations.core import paper
 from derivations.core.certificates import CertificateLog, Outcome
+from derivations.core.differential import t
 from derivations.core.emit import Emitted
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
@@ -55,7 +56,7 @@ from derivations.core.symbols import I11, I13, I22, I23, I33, d, g1, g2, g3, p, 
 from derivations.sections import scattering_balls
 from derivations.sections.model import I33_FROM_DET
 from derivations.sections.scattering_evidence import GRID_D, GRID_DIGITS, GRID_DPS, GRID_P, numeric_certificates
-from derivations.sections.special_case import I_DOMAIN
+from derivations.sections.special_case import CASE, D_POSITIVE, I_DOMAIN, P_REAL
 
 NAME = "scattering"
 TITLE = "The scattering angle (section 5.1, Theorem 5.2)"
@@ -65,6 +66,9 @@ h1, h2, h3 = sp.symbols("h1:4", real=True)
 E, H, sig = sp.symbols("E H sigma1")  # E = exp(i pi p/2), H = exp(pi p/(2d))
 shx, chx, sy, cy = sp.symbols("shx chx sy cy", real=True)
 I_UNIT = sp.Symbol("i")
+Deltapsi = sp.Symbol("Deltapsi", real=True)
+HYPOTHESES = [CASE, D_POSITIVE, P_REAL, r"$\gamma(t)$ the solution with $\gamma\to-e_1$ as $t\to-\infty$",
+              r"$\Delta\psi\in[0,\pi]$"]
 
 POLY = Domain("Q[omega, gamma, h]")
 SPHERE = Domain("Q[gamma1, gamma2][gamma3]/(gamma3^2 + gamma1^2 + gamma2^2 - 1)",
@@ -154,14 +158,28 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                              "Theorem 5.2 (p)", (I11 * I22 * (I11 - I22) / (I11 * I22 * I33 - 1)).subs(det_one)
                              - p_squared, I_DOMAIN)
 
+    # the closed forms (the exponential forms cos_y/cosh_x of the certificates, E = e^(i pi p/2), H = e^(pi p/(2d)))
+    # and the evaluation form emitted below; the printer's atan2 and |.| read worse than the TeX, which is kept
+    gamma1_zero = -sp.cos(sp.pi * p / 2) / sp.cosh(sp.pi * p / (2 * d))
+    xs, ss, cs = sp.symbols("x s c", nonnegative=True)
+    y_ = sp.Symbol("y", real=True)
+    stable = 2 * sp.atan2(sp.sqrt(sp.tanh(xs) ** 2 + ss**2 * sp.sech(xs) ** 2), cs * sp.sech(xs))
     result.formula("angle", "Theorem 5.2", "Scattering angle ($I_{13}=0$, any real $p$)",
                    r"\cos\frac{\Delta\psi}{2}=\frac{|\cos(\pi p/2)|}{\cosh(\pi p/(2d))},\quad"
                    r"\gamma_1(0)=-\frac{\cos(\pi p/2)}{\cosh(\pi p/(2d))},\quad"
                    r"\cos\Delta\psi=-\lim_{t\to+\infty}\gamma_1",
-                   c_sym, c_rigid, c_half, c_s, c_gamma, c_sigma, c_limit, c_route, c_grid_balls, c_grid)
+                   c_sym, c_rigid, c_half, c_s, c_gamma, c_sigma, c_limit, c_route, c_grid_balls, c_grid,
+                   expr=sp.Tuple(sp.Eq(sp.cos(Deltapsi / 2), sp.Abs(gamma1_zero), evaluate=False),
+                                 sp.Eq(sp.Function("gamma1")(0), gamma1_zero, evaluate=False),
+                                 sp.Eq(sp.cos(Deltapsi), -sp.Limit(sp.Function("gamma1")(t), t, sp.oo), evaluate=False)),
+                   hypotheses=HYPOTHESES)
     result.formula("angle_stable", "Theorem 5.2", "Scattering angle, evaluation form",
                    r"\Delta\psi=2\operatorname{atan2}\Big(\sqrt{\tanh^2x+\sin^2y\,\operatorname{sech}^2x},\ "
-                   r"|\cos y|\operatorname{sech}x\Big),\ x=\frac{\pi|p|}{2d},\ y=\frac{\pi p}{2}", c_stable)
+                   r"|\cos y|\operatorname{sech}x\Big),\ x=\frac{\pi|p|}{2d},\ y=\frac{\pi p}{2}", c_stable,
+                   expr=sp.Tuple(sp.Eq(Deltapsi, stable.subs({ss: sp.sin(y_), cs: sp.Abs(sp.cos(y_))}), evaluate=False),
+                                 sp.Eq(xs, sp.pi * sp.Abs(p) / (2 * d), evaluate=False),
+                                 sp.Eq(y_, sp.pi * p / 2, evaluate=False)),
+                   hypotheses=HYPOTHESES)
     result.errata.append(erratum(
         paper.MONODROMY_FACTOR, "corrected",
         r"\mathcal F_1\to\mathcal F_1-2i\exp\big(\pi i(\beta_1+\beta_2-\alpha_1-\alpha_2-\alpha_3)\big)(\cdots)",
@@ -188,9 +206,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         "the text's first component contradicts $cos(Deltapsi)$ = -lim gamma1 two lines later (the formula is "
         "the right one: the integration confirms it); the sense of rotation follows $omega1$, which tends to $a$ at $+oo$",
         c_text_printed, c_half, c_grid_balls, c_grid))
-    xs, ss, cs = sp.symbols("x s c", nonnegative=True)
-    emit = [Emitted("scattering_angle", (xs, ss, cs), (),
-                    (2 * sp.atan2(sp.sqrt(sp.tanh(xs) ** 2 + ss**2 * sp.sech(xs) ** 2), cs * sp.sech(xs)),),
+    emit = [Emitted("scattering_angle", (xs, ss, cs), (), (stable,),
                     (c_stable.key, c_grid_balls.key, c_route.key),
                     "Delta psi from x = pi |p|/(2d), s = |sin(pi p/2)|, c = |cos(pi p/2)| (Theorem 5.2, evaluation form).")]
     result.exports.update(emit=emit, grid={"p": GRID_P, "d": GRID_D, "dps": GRID_DPS, "digits": GRID_DIGITS},

@@ -60,6 +60,11 @@ I_DOMAIN = Domain("Q(I11,I22,I23)")
 
 SUBSTITUTION = {I13: 0, I11: I22 * (d**2 + 1), I23: -I22 * d / p, r: I22 * c}
 lam = sp.Symbol("lambda")  # eigenvalue variable
+# hypotheses of the formulas in p, d (printed with them, attached to their catalog entries)
+CASE = "$I_{13}=0$"
+D_POSITIVE = "$d>0$"
+P_REAL = "$p$ real, $p\\ne0$"
+SOLUTION = r"$\omega(t)=\big(\tfrac pd\tanh t,\,-\tfrac pdc\operatorname{sech}t\big)$, $c^2=d^2+1$"
 
 
 def _expanded_det(matrix: sp.Matrix) -> sp.Expr:
@@ -109,6 +114,11 @@ def poisson_matrix(omega1, omega2) -> sp.Matrix:
     return sp.Matrix([[0, 0, -omega2], [0, 0, omega1], [omega2, -omega1, 0]])
 
 
+def positive_branch(expr):
+    """``expr`` with ``c = +sqrt(d^2 + 1)``, the branch the documents print."""
+    return expr.subs(c, sp.sqrt(d**2 + 1))
+
+
 def _limits(solution: dict) -> dict:
     return {s: [solution[v].subs({T: s, S: 0}) for v in (w1, w2)] for s in (1, -1)}
 
@@ -139,7 +149,12 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                                  p_squared - (I11 * I22) ** 2 * necc1, I_DOMAIN)
     result.formula("pmap", "eq:necc1, eq:cpr", "Parameters from the inertia tensor ($I_{13}=0$)",
                    r"c^2=\frac{I_{11}}{I_{22}}=d^2+1,\quad p=a\,d=-\frac{I_{22}\,d}{I_{23}},\quad "
-                   r"p^2=\frac{I_{22}(I_{11}-I_{22})}{I_{23}^2}", c_coef, c_c2, c_p2)
+                   r"p^2=\frac{I_{22}(I_{11}-I_{22})}{I_{23}^2}", c_coef, c_c2, c_p2,
+                   expr=sp.Tuple(sp.Eq(c**2, I11 / I22, evaluate=False), sp.Eq(c**2, d**2 + 1, evaluate=False),
+                                 sp.Eq(p, sp.Symbol("a") * d, evaluate=False), sp.Eq(p, a_val * d, evaluate=False),
+                                 sp.Eq(p**2, p_squared, evaluate=False)),
+                   hypotheses=[CASE, model.FRAME, "$I_{11}>I_{22}>0$", D_POSITIVE,
+                               "$a$ the coefficient of $\\tanh t$ in $\\omega_1(t)$ of the general solution"])
     result.errata.append(erratum(
         paper.NECC1, "corrected", r"p^2=\frac{I_{22}(I_{11}-I_{22})}{I_{23}^2}"
         r"=\frac{I_{11}I_{22}(I_{11}-I_{22})}{I_{11}I_{22}I_{33}-1}\ (\det\mathbb I=1)",
@@ -172,10 +187,14 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                             (I11 * w1**2 + I22 * w2**2).subs(SUBSTITUTION) - I22 * F1, PD_FIELD)
     result.formula("sysfin", "eq:sysfin", "Euler equations for $I_{13}=0$",
                    r"\dot\omega_1=" + latex(sysfin[w1]) + r",\quad\dot\omega_2=" + latex(sysfin[w2]),
-                   c_sys)
+                   c_sys, expr=sp.Tuple(model.ode(w1, sysfin[w1]), model.ode(w2, sysfin[w2])),
+                   hypotheses=[CASE, D_POSITIVE, P_REAL])
+    # the printer orders F1's terms omega1^2 (d^2+1) + omega2^2: kept as the paper's TeX
     result.formula("ccalki", "eq:ccalki", "First integrals",
                    r"F_1=(d^2+1)\omega_1^2+\omega_2^2,\quad F_2=\gamma_1^2+\gamma_2^2+\gamma_3^2", c_f1, c_f2,
-                   c_energy)
+                   c_energy, expr=sp.Tuple(sp.Eq(sp.Symbol("F1"), F1, evaluate=False),
+                                           sp.Eq(sp.Symbol("F2"), paper.CCALKI_F2, evaluate=False)),
+                   hypotheses=[CASE, D_POSITIVE, P_REAL])
     result.errata.append(erratum(
         paper.SYSFIN, "corrected", r"\dot\omega_1=+" + latex(sysfin[w1]) + r",\ \dot\omega_2=" + latex(sysfin[w2]),
         "the sign is not a free choice: only + follows from the Euler equations, and with - the "
@@ -194,7 +213,11 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                           [solution[w1] - (p / d) * T, solution[w2] + (p / d) * c * S], PD_RING.domain)
     result.formula("omegas", "omegas", "Angular velocity ($a=p/d$, $c=\\sqrt{d^2+1}$)",
                    r"\omega_1(t)=\frac{p}{d}\tanh t,\quad \omega_2(t)=-\frac{p\sqrt{d^2+1}}{d}\operatorname{sech}t",
-                   c_sol, *numeric_certs, c_form)
+                   c_sol, *numeric_certs, c_form,
+                   expr=sp.Tuple(*[sp.Eq(model.of_t(v), model.of_tanh_sech(positive_branch(solution[v])), evaluate=False)
+                                   for v in (w1, w2)]),
+                   hypotheses=[CASE, D_POSITIVE, P_REAL, "rate $A=1$, $t_0=0$",
+                               "$c=\\sqrt{d^2+1}$ (with $-c$ it is a solution too)"])
     result.errata.append(erratum(
         paper.OMEGAS, "corrected", r"\omega_1=a\tanh t,\ \omega_2=-ac\,\mathrm{sech}\,t,\ a=-\frac{I_{22}}{I_{23}}",
         "the form is confirmed; the printed $a = (I22 I33 - I23^2)/I23 = 1/(I11 I23)$ ($det(I) = 1$) is the value "
@@ -204,7 +227,10 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     c_level = certify_zero(log, "$F1 = a^2 c^2 = p^2 (d^2+1)/d^2$ on $omega(t)$", "eq:ccalki",
                            level - p**2 * (d**2 + 1) / d**2, PD_RING.domain)
     result.formula("level", "eq:ccalki", "Energy level of the normalised solution",
-                   r"F_1=a^2c^2=\frac{p^2(d^2+1)}{d^2}", c_level)
+                   r"F_1=a^2c^2=\frac{p^2(d^2+1)}{d^2}", c_level,
+                   expr=sp.Tuple(sp.Eq(sp.Symbol("F1"), sp.Symbol("a")**2 * c**2, evaluate=False),
+                                 sp.Eq(sp.Symbol("F1"), p**2 * (d**2 + 1) / d**2, evaluate=False)),
+                   hypotheses=[CASE, D_POSITIVE, P_REAL, SOLUTION, "$a=p/d$", "$c^2=d^2+1$"])
     result.errata.append(erratum(paper.F1_VALUE_SENTENCE, "not comparable", r"F_1=a^2c^2=\frac{p^2(d^2+1)}{d^2}",
                                  "the printed sentence breaks off after '$F1 = a^2 c^2$ ='; completed by derivation",
                                  c_level))
@@ -215,7 +241,10 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     c_lim_text = certify_zero(log, "text: the limit angular velocity is $mp a$ as t -> +-oo", "omegas (text)",
                               [limits[1][0] + p / d, limits[-1][0] - p / d], PD_DOMAIN, expect=Outcome.FAIL)
     result.formula("limits", "omegas", "Limit steady rotations about $(1,0,0)$",
-                   r"\lim_{t\to\pm\infty}\omega(t)=\left(\pm\frac{p}{d},\,0\right)", c_lim)
+                   r"\lim_{t\to\pm\infty}\omega(t)=\left(\pm\frac{p}{d},\,0\right)", c_lim,
+                   expr=sp.Tuple(*[sp.Eq(sp.Limit(model.of_t(v), t, sign * sp.oo), limits[sign][k], evaluate=False)
+                                   for sign in (1, -1) for k, v in enumerate((w1, w2))]),
+                   hypotheses=[CASE, D_POSITIVE, P_REAL, SOLUTION])
     result.errata.append(erratum(paper.LIMIT_TEXT, "corrected",
                                  r"t\to\pm\infty:\ \omega_1\to\pm a",
                                  "the text's $mp a$ contradicts the formula omegas ($omega1 = a tanh t$)",
@@ -230,9 +259,12 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     lam_poly = sp.expand((A0 - lam * sp.eye(3)).det())
     c_char = certify_zero(log, "$det(A0 - lam) = -(lam^3 - p^2 lam)$: eigenvalues $0$, +-p", "eq:ro",
                           lam_poly + lam**3 - p**2 * lam, PD_DOMAIN)
+    A0_shown, characteristic = sp.ImmutableMatrix(positive_branch(A0)), flint_factor.factor(-lam**3 + p**2 * lam)
     result.formula("A0", "eq:am2, eq:ro", "Residue of $A(t)$ at $t_0=i\\pi/2$ and its eigenvalues",
-                   r"A_0=" + latex(A0.subs(c, sp.Symbol(r"\sqrt{d^2+1}"))) + r",\quad \det(A_0-\lambda)="
-                   + latex(flint_factor.factor(-lam**3 + p**2 * lam)), c_am2, c_res_num, c_char)
+                   [("A_0", A0_shown), (r"\det(A_0-\lambda)", characteristic)], c_am2, c_res_num, c_char,
+                   expr=sp.Tuple(sp.Eq(model.named_matrix("A0", 3, 3), A0_shown, evaluate=False),
+                                 sp.Eq(sp.Symbol("charA0"), characteristic, evaluate=False)),
+                   hypotheses=[CASE, D_POSITIVE, P_REAL, SOLUTION + ", branch $c=\\sqrt{d^2+1}$"])
     result.errata.append(erratum(paper.AM2, "confirmed", paper.AM2.latex, "derived as an exact residue",
                                  c_am2, c_res_num))
 

@@ -61,6 +61,7 @@ from dataclasses import dataclass
 from flint import acb, arb, arb_mat, arb_series, ctx
 
 from .display import Ball
+from .reprs import enclosure_html, enclosure_latex
 from .validate import rational
 
 __all__ = ["AngleEnclosure", "EnclosureTooCostly", "DIGITS_RANGE", "MAX_SECONDS", "to_arb", "ss_angle_enclosure"]
@@ -87,6 +88,12 @@ class AngleEnclosure:
     @property
     def width(self) -> float:
         return 2.0 * float(self.angle.rad())
+
+    def _repr_latex_(self) -> str:   # notebooks: the ball with the digits its radius supports (suslov.kernel.reprs)
+        return enclosure_latex(self)
+
+    def _repr_html_(self) -> str:
+        return enclosure_html(self)
 
 
 def to_arb(name: str, value) -> arb:

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from math import isqrt
 
+from suslov.kernel.reprs import galois_html, galois_latex
 from suslov.kernel.validate import rational, shown
 
 __all__ = ["GaloisGroup", "exact_body", "exact_invariants", "galois_group"]
@@ -59,6 +60,12 @@ class GaloisGroup:
     @property
     def identity_component(self) -> str:
         return "SO(2,C)" if self.liouvillian else "SO(3,C)"
+
+    def _repr_latex_(self) -> str:   # notebooks: the group in math (suslov.kernel.reprs)
+        return galois_latex(self)
+
+    def _repr_html_(self) -> str:    # notebooks: the verdict first, then why
+        return galois_html(self)
 
 
 def exact_body(I11, I22, I13, I23) -> tuple:

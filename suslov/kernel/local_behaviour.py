@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from math import isqrt
 
 from suslov.kernel.kimura import exact_body, exact_invariants
+from suslov.kernel.reprs import local_latex
 from suslov.kernel.validate import shown
 
 __all__ = ["LocalBehaviour", "classify", "local_behaviour"]
@@ -54,6 +55,9 @@ class LocalBehaviour:
 
     def _repr_html_(self) -> str:   # notebooks: the verdict first, then why
         return f"<b>{self.kind}</b> at every pole of &omega;: {self.reason}"
+
+    def _repr_latex_(self) -> str:  # notebooks: Lambda and the exponents in math (suslov.kernel.reprs)
+        return local_latex(self)
 
 
 def local_behaviour(I11, I22, I13, I23) -> LocalBehaviour:

@@ -68,6 +68,7 @@ from .fuchsian_flow import (
     segment,
     working_precision,
 )
+from .reprs import monodromy_html, monodromy_latex
 
 __all__ = ["Monodromy", "compute_monodromy", "decide_group", "VERDICTS"]
 
@@ -103,6 +104,12 @@ class Monodromy:
         """The largest radius of any entry of any matrix (inf when nothing was integrated)."""
         return max((max(max(float(m[r, c].real.rad()), float(m[r, c].imag.rad())) for r in range(3) for c in range(3))
                     for m in self.matrices.values()), default=math.inf)
+
+    def _repr_latex_(self) -> str:   # notebooks: the verdict, exponents and radius in math (suslov.kernel.reprs)
+        return monodromy_latex(self)
+
+    def _repr_html_(self) -> str:    # notebooks: the verdict, the certificates, the matrices folded
+        return monodromy_html(self)
 
 
 def _identity() -> acb_mat:

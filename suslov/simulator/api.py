@@ -28,10 +28,10 @@ from pathlib import Path
 import numpy as np
 
 from suslov.extras import FIGURES as FIGURE_LIBRARIES
-from suslov.extras import require
+from suslov.extras import missing, require
 from suslov.simulator.scene import FIGURES, Scene, SceneError, load_scene, parse_scene
 
-__all__ = ["simulate", "Result"]
+__all__ = ["Result", "check_extras", "simulate"]
 
 
 @dataclass
@@ -110,6 +110,12 @@ class Result:
         shown = ", ".join(self.keys())
         return f"<suslov Result of scene {self.scene.name!r}: {shown}>"
 
+    def _repr_html_(self) -> str:
+        """Notebooks: the results (value first, then method), the arrays, the steps and the scene's figures inline
+        as PNG (:mod:`suslov.simulator.result_display`; without matplotlib a line naming the [sim] extra)."""
+        from suslov.simulator.result_display import result_html
+        return result_html(self)
+
 
 def needs_figures(what: str, names) -> None:
     """The one check before figures ``names`` are drawn (plot, save, simulate with ``out``): a core install
@@ -118,6 +124,41 @@ def needs_figures(what: str, names) -> None:
     needs nothing."""
     if names:
         require("sim", f"{what}, drawing {', '.join(names)},", FIGURE_LIBRARIES)
+
+
+def check_extras(what: str, scene: Scene, plan=None, *, figures: bool = True, workers: int | None = None,
+                 scheduler: str | None = None) -> int | None:
+    """The one check of the [sim] extra per scene (issue 47): a ``ModuleNotFoundError`` (an ``ImportError``) naming
+    the extra, the missing libraries and the steps that need them, before any work, when a planned step needs a
+    library that is not installed (:meth:`suslov.simulator.planner.Plan.libraries`: an integration its integrator, a
+    figure matplotlib when ``figures``); a closed-form scene passes with NumPy, mpmath and python-flint alone.
+
+    A sweep (``plan`` None) needs what its effects and figures need, and loky for local worker processes: without
+    loky and without a scheduler, ``workers=None`` (all cores) becomes 1 (this process), which is returned;
+    otherwise ``workers`` is returned unchanged."""
+    from suslov.simulator.planner import sweep_libraries
+
+    needs = plan.libraries(figures) if plan is not None else sweep_libraries(scene, figures)
+    if plan is None and scheduler is None and missing("sim", ("loky",)):
+        if workers is None:
+            workers = 1           # the default: all cores, in loky's processes; one core needs no process
+        elif workers > 1:
+            needs[f"{workers} worker processes"] = ("loky",)
+    lacking = {step: tuple(lib for lib in libraries if missing("sim", (lib,))) for step, libraries in needs.items()}
+    lacking = {step: libraries for step, libraries in lacking.items() if libraries}
+    if lacking:
+        libraries = tuple(dict.fromkeys(lib for libs in lacking.values() for lib in libs))
+        require("sim", f"{what} ({', '.join(map(_need_label, lacking))})", libraries)
+    return workers
+
+
+def _need_label(step: str) -> str:
+    """``figure:map`` -> ``figure map``; an integrating step or effect says so."""
+    if step.startswith("figure:"):
+        return "figure " + step.split(":", 1)[1]
+    if step.endswith(("_integrate", "_integrated")):
+        return f"{step}: a numerical integration"
+    return step
 
 
 def as_scene(scene) -> Scene:
@@ -147,7 +188,9 @@ def simulate(scene, *, out=None, workers: int | None = None, scheduler: str | No
     from them when interrupted).  ``workers`` / ``scheduler``: where a sweep's chunks run (local processes,
     default all cores, or a dask.distributed address).  ``progress``: ``True`` for lines on stderr, or a
     callable taking one string.  A sweep above 200000 points or an hour of estimated work runs only with
-    ``confirmed=True``.  Bad input raises :class:`~suslov.simulator.scene.SceneError` naming the field.
+    ``confirmed=True``.  Bad input raises :class:`~suslov.simulator.scene.SceneError` naming the field.  A step
+    that needs the [sim] extra (an integration, a figure drawn for ``out``) raises an ``ImportError`` naming it when
+    a library is missing, before any work (:func:`check_extras`); closed forms need the core install only.
     """
     scene = as_scene(scene)
     report = _reporter(progress)
@@ -156,6 +199,8 @@ def simulate(scene, *, out=None, workers: int | None = None, scheduler: str | No
     if out is not None:
         needs_figures(f"simulate(..., out={str(out)!r})", scene.figures)
     if scene.is_sweep:
+        workers = check_extras(f"simulate(scene {scene.name!r})", scene, figures=out is not None, workers=workers,
+                               scheduler=scheduler)
         return _sweep(scene, out, workers, scheduler, report, confirmed)
     from suslov.simulator.engine import execute, write_outputs
     from suslov.simulator.planner import make_plan
@@ -164,6 +209,7 @@ def simulate(scene, *, out=None, workers: int | None = None, scheduler: str | No
         plan = make_plan(scene)
     except ValueError as exc:
         raise SceneError(scene.path, "body", str(exc)) from None
+    check_extras(f"simulate(scene {scene.name!r})", scene, plan, figures=out is not None)
     if out is not None:
         from suslov.simulator.outputs import check_out
         check_out(out)

@@ -6,9 +6,12 @@ The parser is :mod:`suslov.cli` (the ``suslov`` command, also ``python -m suslov
 dask.distributed cluster (``--scheduler tcp://host:port``, or the environment variable
 ``SUSLOV_SCHEDULER``); an interrupted sweep resumes from its finished chunks.
 
-Exit codes: 0 success, 2 bad input (scene file, output directory), 1 a
+Exit codes: 0 success, 2 bad input (scene file, output directory, a missing extra), 1 a
 computation failed, 130 interrupted.  Errors are one line naming the file, the field and the
-reason; nothing is written to ``--out`` unless the whole scene succeeded.
+reason; nothing is written to ``--out`` unless the whole scene succeeded.  The [sim] extra (SciPy, heyoka,
+matplotlib, loky) is asked for per scene, by what its plan needs (:func:`suslov.simulator.api.check_extras`): a
+scene of closed forms, balls and exact decisions without figures runs on the core install (NumPy, mpmath,
+python-flint).
 """
 from __future__ import annotations
 
@@ -18,7 +21,7 @@ from pathlib import Path
 from suslov.executor import TMP_PREFIX, SchedulerError, scheduler_address, worker_limit
 from suslov.interrupts import listen_for_interrupts
 from suslov.outdir import OutputRefused, discard_own, write_failure
-from suslov.simulator.api import simulate
+from suslov.simulator.api import check_extras, simulate
 from suslov.simulator.outputs import check_out
 from suslov.simulator.planner import make_plan
 from suslov.simulator.scene import SceneError, load_scene
@@ -52,6 +55,11 @@ def simulate_command(args) -> int:
         return 0
     if not args.out:
         print("suslov: error: --out DIR is required (or --explain)", file=sys.stderr)
+        return 2
+    try:
+        check_extras(f"suslov simulate {scene.path}", scene, plan)
+    except ModuleNotFoundError as exc:
+        print(f"suslov: error: {exc}", file=sys.stderr)
         return 2
     try:
         check_out(args.out)
@@ -97,6 +105,11 @@ def _sweep(scene, args, progress) -> int:
         return 0
     if not args.out:
         print("suslov: error: --out DIR is required (or --explain)", file=sys.stderr)
+        return 2
+    try:
+        args.workers = check_extras(f"suslov simulate {scene.path}", scene, workers=args.workers, scheduler=scheduler)
+    except ModuleNotFoundError as exc:
+        print(f"suslov: error: {exc}", file=sys.stderr)
         return 2
     outcome = []
     try:

@@ -22,6 +22,12 @@ topological order: a need always comes earlier).  The whole policy is the table
   the validated integration stays available there as ``method="integration"``.
 * ``integral_drift`` needs omega and gamma; a figure needs the effect it draws, nothing more.
 
+What each step needs of the ``[sim]`` extra (:func:`step_libraries`): the closed forms, the balls and the exact
+decisions need NumPy, mpmath and python-flint only (the core install); a numerical integration needs its
+integrator (heyoka for ``method = "taylor"``, SciPy for ``scipy:NAME``), the sleigh's path SciPy's quadrature, a
+figure matplotlib.  ``suslov simulate`` and ``suslov.simulate`` ask for the extra only when a planned step
+needs it (:func:`suslov.simulator.api.check_extras`).
+
 A sweep scene uses the same providers per point (:func:`point_steps`); its plan counts the
 points of each class (:mod:`suslov.simulator.sweep`).
 """
@@ -30,6 +36,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from suslov.extras import FIGURES as FIGURE_LIBRARIES
 from suslov.loader import gf
 from suslov.simulator.body import make_body
 from suslov.simulator.exact import of_scene_body
@@ -133,6 +140,13 @@ class Plan:
     def names(self) -> list[str]:
         return [s.name for s in self.steps]
 
+    def libraries(self, figures: bool = True) -> dict:
+        """Step name -> the libraries of the [sim] extra it needs, for the steps that need any (figure steps only
+        when ``figures``: drawn by ``Result.plot``, ``save`` or ``out=``, not by computing)."""
+        needs = {s.name: step_libraries(s.name, self.scene) for s in self.steps
+                 if figures or not s.name.startswith("figure:")}
+        return {name: libraries for name, libraries in needs.items() if libraries}
+
     def explain(self) -> str:
         lines = [f"scene {self.scene.name!r} ({self.scene.path})", f"body: {describe(self.body)}"]
         exact = getattr(self.body, "exact", None)
@@ -147,6 +161,37 @@ class Plan:
         lines.append("steps:")
         lines += [f"{i}. {s.name}: {s.method}  [{s.reason}]" for i, s in enumerate(self.steps, 1)]
         return "\n".join(lines)
+
+
+INTEGRATING_STEPS = ("gamma_integrate", "orientation_integrate", "angle_integrate")
+
+
+def integrator_library(scene) -> str:
+    """The library of the scene's integrator: heyoka (``method = "taylor"``) or SciPy (``scipy:NAME``)."""
+    return "heyoka" if scene.method == "taylor" else "scipy"
+
+
+def step_libraries(name: str, scene) -> tuple:
+    """The libraries of the [sim] extra step ``name`` needs; () for a closed form, a ball or an exact decision
+    (NumPy, mpmath and python-flint: the core install)."""
+    if name in INTEGRATING_STEPS:
+        return (integrator_library(scene),)
+    if name == "sleigh_path":
+        return ("scipy",)       # the contact point: closed-form velocities + SciPy's DOP853 quadrature
+    if name.startswith("figure:"):
+        return FIGURE_LIBRARIES
+    return ()
+
+
+def sweep_libraries(scene, figures: bool = True) -> dict:
+    """What a sweep scene needs of the [sim] extra, per effect or figure (the same steps per point as
+    :func:`point_steps`: only ``scattering_angle_integrated`` integrates)."""
+    needs = {}
+    if "scattering_angle_integrated" in scene.effects:
+        needs["scattering_angle_integrated"] = (integrator_library(scene),)
+    if figures:
+        needs.update({f"figure:{name}": FIGURE_LIBRARIES for name in scene.figures})
+    return needs
 
 
 def describe(body) -> str:
