@@ -58,7 +58,7 @@ TAYLOR_TOL = 1e-12          # what engine.numeric_angle passes for method = "tay
 REFERENCE_BITS = 200        # closed-form ball of the float entries: the reference for the float sample
 BALL_BODIES = (             # exact entries (paper's frame, I12 = 0)
     ("5/4", "1", "3/10", "-1/2"),        # the general body of bench_enclosure and the docstrings
-    ("5/4", "1", "0", "-1/4"),           # I13 = 0 (p = 2, d = 1/2): Theorem 5.2's case
+    ("5/4", "1", "0", "-1/4"),           # I13 = 0 (p = 2, d = 1/2): Theorem 5.4's case
     ("2", "1/2", "-7/10", "1/5"),
     ("1/2", "2", "1/3", "2/3"),          # I11 < I22 (not the canonical order)
 )

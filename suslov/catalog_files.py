@@ -41,15 +41,20 @@ def _string(text: str) -> str:
     return json.dumps(text)   # a double-quoted string with \\ and \" escapes: valid in both languages
 
 
+def _lists(entry) -> list[tuple[str, list[str]]]:
+    """The string lists every export carries beside the formula (double-quoted, escaped)."""
+    return [("Hypotheses", [_string(h) for h in entry.hypotheses]),
+            ("Certificates", [_string(k) for k in entry.certificate_keys]),
+            ("Paper", [_string(n) for n in entry.numbers or [entry.labels]])]
+
+
 def _mathematica_item(entry) -> str:
     index = _string(entry.id) + "".join(f", {v}" for v in entry.parameters.values())
     lines = []
     if entry.expr is not None:
         lines.append(f"SuslovFormula[{index}] = {mathematica(entry.expr)};")
         lines.append(f"SuslovAssumptions[{index}] = {' && '.join(assumptions(entry.expr, 'mathematica')) or 'True'};")
-    lines.append(f"SuslovHypotheses[{index}] = {{{', '.join(map(_string, entry.hypotheses))}}};")
-    lines.append(f"SuslovCertificates[{index}] = {{{', '.join(map(_string, entry.certificate_keys))}}};")
-    lines.append(f"SuslovPaper[{index}] = {{{', '.join(map(_string, entry.numbers or [entry.labels]))}}};")
+    lines += [f"Suslov{name}[{index}] = {{{', '.join(items)}}};" for name, items in _lists(entry)]
     return "\n".join(lines)
 
 
@@ -84,9 +89,7 @@ def _maple_item(entry) -> str:
     if entry.expr is not None:
         lines.append(f"SuslovFormula_{name} := proc() {maple(entry.expr)} end proc:")
         lines.append(f"SuslovAssumptions_{name} := {_maple_list(assumptions(entry.expr, 'maple'))}:")
-    lines.append(f"SuslovHypotheses_{name} := {_maple_list(map(_string, entry.hypotheses))}:")
-    lines.append(f"SuslovCertificates_{name} := {_maple_list(map(_string, entry.certificate_keys))}:")
-    lines.append(f"SuslovPaper_{name} := {_maple_list(map(_string, entry.numbers or [entry.labels]))}:")
+    lines += [f"Suslov{kind}_{name} := {_maple_list(items)}:" for kind, items in _lists(entry)]
     return "\n".join(lines)
 
 

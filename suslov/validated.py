@@ -1,4 +1,4 @@
-"""Rigorous enclosures, monodromy and the Galois group of any body (section 5.1, Theorem 5.2, eq:o12, Conclusion).
+"""Rigorous enclosures, monodromy and the Galois group of any body (section 5.1, Theorem 5.4, eq:o12, Conclusion).
 
 The angle between the limit rotation axes of the ss solution (``gamma(-oo) = -n``,
 ``cos Delta psi = -<gamma(+oo), n>``, the angle from its cosine and its sine), as a python-flint ball, for any inertia tensor
@@ -9,7 +9,7 @@ u, v of ``omega(s) = u tanh s + v sech s`` come from the generated module's *emi
 ``_omega_general`` (certified, model:011), evaluated with probe values of (tanh, sech): exact,
 because the emitted function is linear in them.  The enclosure itself is
 :func:`suslov.kernel.enclosure.ss_angle_enclosure` (method and bounds in its module docstring).
-For I13 = 0 the ball contains the closed form ``scattering_angle(p, d)`` (Theorem 5.2, corrected),
+For I13 = 0 the ball contains the closed form ``scattering_angle(p, d)`` (Theorem 5.4, corrected),
 checked by the build (``scattering`` certificates, method "ball enclosure").
 """
 from __future__ import annotations
@@ -164,7 +164,7 @@ def local_behaviour(I11, I22, I13, I23) -> LocalBehaviour:
     ``kind`` is "meromorphic" (the Kovalevskaya exponent Lambda an odd integer: every solution of the Poisson
     equations is meromorphic at every pole t0 = +-i pi/2 + i pi k), "logarithmic" (Lambda even, 0 included) or
     "branching" (Lambda not an integer); ``Lambda``, ``lambda_squared`` (exact), ``exponents`` at t0 and
-    ``reason``.  For I13 = 0, Lambda = p: Theorem 3.1 and its converse, and the logarithms of Conjecture 5.2, for
+    ``reason``.  For I13 = 0, Lambda = p: Theorem 3.2 and its converse, and the logarithms of Conjecture 1, for
     every p.  Entries are read exactly as in :func:`galois_group` (same limits, same ValueError).  The theorem
     and its proof: :mod:`suslov.kernel.local_behaviour`.
 
@@ -182,7 +182,7 @@ def scattering_angle_enclosure(I11, I22, I13, I23, branch: int = 1, dps: int | N
     """Rigorous enclosure of the scattering angle of any body (I12 = 0 frame, a = e3, I11, I22 > 0).
 
     Entries are ints, Fractions, decimal strings (exact) or floats (their binary value).  For
-    I13 = 0 the result contains the closed form of Theorem 5.2 (``scattering_angle``).
+    I13 = 0 the result contains the closed form of Theorem 5.4 (``scattering_angle``).
     ``dps``: the decimal digits asked of the ball, an integer in [1, 300] (default ``mpmath.mp.dps``; the old
     name ``digits=`` still works, with a ``DeprecationWarning``); ``prec`` (working bits, default
     3.33 dps + 40) in [16, 100000].

@@ -4,7 +4,7 @@ Each case used to return a confident wrong answer or a Python-internal message: 
 -5 (the angle rounded to 3.0 or 4.0 > pi), complex arrays silently cut to their real part, a tiny or
 huge tensor giving NaN or a wrong message, a truncated certificates file accepted by ``--verify``,
 an enclosure without a time bound, a sweep of any size started without a word.  Expected values
-come from the definitions: the angle of Theorem 5.2 is in [0, pi]; the answers are scale-invariant,
+come from the definitions: the angle of Theorem 5.4 is in [0, pi]; the answers are scale-invariant,
 so a scaled tensor must give the unscaled tensor's answers.
 """
 import json

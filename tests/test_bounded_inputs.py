@@ -262,7 +262,7 @@ def test_monodromy_near_the_equilibrium_says_unknown_never_overflows():
 # ------------------------------------------------------------------ 4. scenes at the ends of float64
 
 def angle_reference(p, d):
-    """Theorem 5.2 (corrected), evaluation form, in mpmath at 60 digits for the binary values of p and d."""
+    """Theorem 5.4 (corrected), evaluation form, in mpmath at 60 digits for the binary values of p and d."""
     with mpmath.workdps(60):
         p, d = mpmath.mpf(p), mpmath.mpf(d)
         x = mpmath.pi * p / (2 * d)

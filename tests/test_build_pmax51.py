@@ -5,7 +5,7 @@ two cores).  Checked against what is known independently of the build's code:
 
 * Theorem 3.5 / section 3.2: at t0 = i pi/2 logarithms exactly for even p (the paper's theorem,
   confirmed by the 30-digit monodromy of the audit);
-* Conjecture 5.2: s1, s2 logarithmic exactly for even p, s3, s4 never (the paper's conjecture,
+* Conjecture 1: s1, s2 logarithmic exactly for even p, s3, s4 never (the paper's conjecture,
   checked here for every p <= 51, and numerically for p <= 4 in tests/test_galois.py);
 * one orthonormal basis per odd p, the ones beyond 15 by the conservation route, and the round
   trip compares the emitted core with every one of them (by fingerprint beyond 15);
@@ -44,7 +44,7 @@ def test_pmax_51_builds_and_certifies_every_p(tmp_path, cli_build):
     assert sorted(residue) == list(range(1, 52))
     assert all(("no logarithms" in claim) == (p % 2 == 1) for p, claim in residue.items())
 
-    galois = {int(c["claim"].split(":")[0][4:]): c["detail"] for c in claims("galois", "Conjecture 5.2")}
+    galois = {int(c["claim"].split(":")[0][4:]): c["detail"] for c in claims("galois", "Conjecture 1")}
     assert sorted(galois) == list(range(1, 52))
     for p, detail in galois.items():
         s1 = "no log" if p % 2 else "log"
@@ -54,8 +54,8 @@ def test_pmax_51_builds_and_certifies_every_p(tmp_path, cli_build):
     assert [int(c["claim"].split(":")[0][4:]) for c in orthonormal] == list(range(1, 52, 2))
     assert all(("conservation" in c["method"]) == (int(c["claim"].split(":")[0][4:]) > 15) for c in orthonormal)
 
-    cores = [c for c in claims("roundtrip", "round trip") if "exact core reproduces the certified numerators" in
-             c["claim"]]
+    cores = [c for c in claims("roundtrip", "round trip") if "exact core of gamma_basis reproduces the certified numerators"
+             in c["claim"]]
     assert [int(c["claim"].split(":")[0][4:]) for c in cores] == list(range(1, 52, 2))
     assert all(("SHA-256" in c["method"]) == (int(c["claim"].split(":")[0][4:]) > 15) for c in cores)
 

@@ -82,7 +82,7 @@ print(suslov.__version__)
     w1, w2, b00, orthogonality, angle = map(float, numbers.split())
     assert abs(w1 - 6 * math.tanh(0.3)) < 1e-14 and abs(w2 + 6 * math.sqrt(1.25) / math.cosh(0.3)) < 1e-14
     assert abs(b00 - math.tanh(0.7)) < 1e-14 and orthogonality < 1e-13   # p = 1: gamma^(1)_1 = tanh t
-    x = math.pi * 2.5 / (2 * 0.7)   # Theorem 5.2 (corrected): cos(angle/2) = |cos(pi p/2)| / cosh(pi p/(2d))
+    x = math.pi * 2.5 / (2 * 0.7)   # Theorem 5.4 (corrected): cos(angle/2) = |cos(pi p/2)| / cosh(pi p/(2d))
     assert abs(angle - 2 * math.acos(abs(math.cos(math.pi * 2.5 / 2)) / math.cosh(x))) < 1e-12
     assert loaded == "[]" and version == "0.1.0"
 

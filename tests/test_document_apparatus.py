@@ -65,9 +65,10 @@ def test_label_fields_split_at_commas_and_skip_what_has_no_number():
 
 def test_paper_label_prints_numbers_not_labels():
     assert paper_label("eq:o12, c's", prefix=True) == "paper (2.7), (2.8)"
-    assert paper_label("Theorem 5.2 (p)") == "Theorem 5.4 (p)"
+    assert paper_label("Theorem 5.2 (p)") == "Theorem 5.4 ($p$)"      # an old tree's label; the qualifier typeset
+    assert paper_label("Theorem 5.4 (p)") == "Theorem 5.4 ($p$)"
     assert paper_label("derived", prefix=True) == "derived here"
-    assert paper_label("example p = 1") == "example p = 1"
+    assert paper_label("example p = 1") == "example $p = 1$"
 
 
 def test_numbered_rows_give_one_number_to_a_display():

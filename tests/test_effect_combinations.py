@@ -1,6 +1,6 @@
 """Every effect combination the scene schema allows runs (issue 38): a clear SceneError or a result.
 
-For each kind of body (Theorem 5.2's case with a non-integer and an odd p, a general body, the
+For each kind of body (Theorem 5.4's case with a non-integer and an odd p, a general body, the
 Chaplygin sleigh) the schema is asked which effects and figures it accepts; then every subset of the
 accepted effects is planned (the planner's graph, cheap), and every single effect, every single figure
 and the whole set are run and saved.  The failures this catches were ``KeyError: 'omega_paper'`` and

@@ -2,7 +2,7 @@
 
 Independent routes for the expected values: ``derivations.sections.poisson_taylor.ss_through`` (mpmath at 50
 digits: a different implementation of series + Taylor steps, no balls), the closed form of
-Theorem 5.2, exact rational evaluation of the first integrals (Fractions), and the simulator's
+Theorem 5.4, exact rational evaluation of the first integrals (Fractions), and the simulator's
 DOP853 integration with its error estimate.
 """
 from fractions import Fraction
@@ -214,7 +214,7 @@ def test_float_gamma_basis_inside_the_ball_widened_by_its_bound(t, p, d):
 
 
 def theorem_52_angle(p, d, dps=60):
-    """Delta psi in [0, pi] from Theorem 5.2 in mpmath, cos(Delta psi/2) = cos(pi p/2)/cosh(pi p/(2d)) (independent route)."""
+    """Delta psi in [0, pi] from Theorem 5.4 in mpmath, cos(Delta psi/2) = cos(pi p/2)/cosh(pi p/(2d)) (independent route)."""
     with mpmath.workdps(dps):
         p, d = mpmath.mpf(p), mpmath.mpf(d)
         angle = 2 * mpmath.acos(mpmath.cos(mpmath.pi * p / 2) / mpmath.cosh(mpmath.pi * p / (2 * d)))

@@ -3,7 +3,7 @@
 ``galois_group`` and ``scattering_angle_enclosure`` used to read the float, det-normalised paper-frame entries
 of the simulator's body as exact numbers: p = 3 came out SO(3,C) and the "rigorous" ball of its angle excluded
 pi.  Expected values here come from the paper's theorem, not from the code under test: for I13 = 0 and odd
-integer p (p^2 = I22 (I11 - I22)/I23^2) the scattering angle is exactly pi (Theorem 5.2) and the Galois group is
+integer p (p^2 = I22 (I11 - I22)/I23^2) the scattering angle is exactly pi (Theorem 5.4) and the Galois group is
 reducible; for u.v != 0 (I13 I23 (I11 - I22) != 0 in the paper's frame) it is SO(3,C); and p^2 not the square of
 an odd integer is SO(3,C) (Kimura's criterion, suslov.kernel.kimura).  A float is the binary number it holds.
 """

@@ -4,7 +4,7 @@ References, never the code under test at its own precision: (1) the ball closed 
 (300 digits, the binary value of the float inputs) for the float64 evaluation; (2) the validated
 integration of the ss solution (``scattering_angle_enclosure``, method "integration") and a direct
 acb evaluation of cos^2(Delta psi/2) = [cosh(pi U)|tau|^2 - Re(tau^2)]/(2 sinh^2(pi U)) from
-``omega_coefficients`` for the ball itself; (3) Theorem 5.2 (``scattering_angle(p, d)``) for I13 = 0.
+``omega_coefficients`` for the ball itself; (3) Theorem 5.4 (``scattering_angle(p, d)``) for I13 = 0.
 Float bound: the docstring's absolute 1e-13 (1 + |Y|), |Y| = |Im w_-| (observed: below 0.006 of it).
 """
 import inspect
@@ -117,7 +117,7 @@ def test_ball_against_validated_integration(body):
 
 @pytest.mark.parametrize("body", [(2, 1, 0, -1), (2, 1, 0, "-1/3"), (1, 2, 1, 0)])
 def test_ball_at_exactly_odd_p_encloses_pi(body):
-    """Theorem 5.2: odd p gives pi (the float and mp twins do; the integration encloses pi for (2, 1, 0, -1))."""
+    """Theorem 5.4: odd p gives pi (the float and mp twins do; the integration encloses pi for (2, 1, 0, -1))."""
     ball = sf.general_scattering_angle_ball(*body, prec=200)
     assert ball.is_finite() and ball.rad() < 1e-50 and ball.overlaps(arb.pi())
 

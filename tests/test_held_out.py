@@ -28,7 +28,7 @@ def _mp(x):
 
 
 def theorem52(p, d, dps):
-    """Theorem 5.2 (corrected): cos(Delta psi/2) = |cos(pi p/2)| / cosh(pi p/(2 d))."""
+    """Theorem 5.4 (corrected): cos(Delta psi/2) = |cos(pi p/2)| / cosh(pi p/(2 d))."""
     with mpmath.workdps(dps):
         p, d = _mp(p), _mp(d)
         return 2 * mpmath.acos(abs(mpmath.cos(mpmath.pi * p / 2)) / mpmath.cosh(mpmath.pi * p / (2 * d)))

@@ -7,9 +7,9 @@ there, at p = 201; each test asserts the certificate's outcome, not only that no
 
 * ``meromorphic.basis_for_p`` (a worker's certificates of one odd p's orthonormal basis);
 * ``residue.logarithm_verdict`` (Frobenius obstructions at t0 = i pi/2; the series' certificate for pmax 201):
-  no logarithms for odd p, logarithms for every d > 0 for even p (the paper's Theorem 3.1 claims none for every
+  no logarithms for odd p, logarithms for every d > 0 for even p (the paper's Theorem 3.2 claims none for every
   p: refuted for even p, as expected);
-* ``galois.decide_logarithms``: Conjecture 5.2 (s1, s2 logarithmic exactly for even p, s3, s4 never);
+* ``galois.decide_logarithms``: Conjecture 1 (s1, s2 logarithmic exactly for even p, s3, s4 never);
 * ``first_integrals.certify_p`` with the derived field of ``special_case``;
 * the round trip: ``roundtrip.per_p_checks`` (the emitted core by fingerprint, the first-integral proof, both
   gamma_basis proofs and the exact check of gamma_basis_mp) and ``certify_basis_core`` at 101 (at 201 they take
@@ -187,7 +187,7 @@ def test_residue_laurent_series_for_pmax_201():
 
 @pytest.mark.parametrize("p", [P, P + 1, P2, P2 + 1])
 def test_galois_decide_logarithms(p):
-    """Conjecture 5.2: s1, s2 logarithmic exactly for even p, s3, s4 never (galois.run()'s criterion)."""
+    """Conjecture 1: s1, s2 logarithmic exactly for even p, s3, s4 never (galois.run()'s criterion)."""
     verdict, _ = galois.decide_logarithms(p)
     s12 = "no log" if p % 2 else "log"
     assert verdict == {"s1": s12, "s2": s12, "s3": "no log", "s4": "no log"}
@@ -212,7 +212,7 @@ def test_roundtrip_per_p_checks_101(emitted, basis101):
     assert outcomes(certs) == [Outcome.PASS] * 5, [(str(c.claim)[:60], c.detail) for c in certs]
     claims = [str(c.claim) for c in certs]
     assert all(claim.startswith(f"p = {P}:") for claim in claims)
-    assert "exact core reproduces the certified numerators" in claims[0] and str(certs[0].detail) == "identical"
+    assert "exact core of gamma_basis reproduces the certified numerators" in claims[0] and str(certs[0].detail) == "identical"
     assert "first_integral float64" in claims[1] and "gives the analysed sequence's bits" in str(certs[1].detail)
     assert "double-double phase" in claims[2] and "ball phase" in claims[3]
     assert "gamma_basis_mp equals the certified numerators" in claims[4]

@@ -45,7 +45,7 @@ NOTEBOOK = ROOT / "docs" / "examples" / "catalog_tour.ipynb"
 BODIES = {"general": ("5/4", 1, "3/10", "-1/2"), "p3_d1": (2, 1, 0, "-1/3"), "p2": (2, 1, 0, "-1/2"),
           "p10_3": (2, 1, 0, "-0.3")}
 # the paper's theorems, not the package: on I13 = 0 (d = 1, p = 1/|I23|) odd p is Liouvillian with meromorphic
-# solutions (Theorems 3.1, 6.1), even p has logarithms (Conjecture 5.2, proved by the build), any other p branches;
+# solutions (Theorems 3.1, 6.1), even p has logarithms (Conjecture 1, proved by the build), any other p branches;
 # u.v != 0 (I13 I23 (I11 - I22) != 0) is never Liouvillian and branches
 EXPECTED = {"general": ("SO(3,C)", False, "branching", None), "p3_d1": ("reducible", True, "meromorphic", 3),
             "p2": ("SO(3,C)", False, "logarithmic", 2), "p10_3": ("SO(3,C)", False, "branching", None)}

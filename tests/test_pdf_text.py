@@ -13,6 +13,7 @@ the structure, the JSON and the documents.
 """
 import os
 import shutil
+import subprocess
 
 import pytest
 import sympy as sp
@@ -25,14 +26,19 @@ from derivations.output.pipeline import GENERATED
 
 
 @pytest.fixture(scope="module")
-def texts(tmp_path_factory):
-    for tool in ("pdflatex", "pdftotext"):
+def pdfs(tmp_path_factory):
+    """Both documents compiled from the committed tree: name -> PDF path."""
+    for tool in ("pdflatex", "pdftotext", "pdftohtml"):
         if shutil.which(tool) is None:
             if os.environ.get("CI"):
                 pytest.fail(f"{tool} not found under CI: .ci/run must install it")
             pytest.skip(f"{tool} not installed")
-    compiled = pdf.compile_pdfs(GENERATED, tmp_path_factory.mktemp("pdf"))
-    return {document.name: pdf.pdf_text(document) for document in compiled}
+    return {d.name: d for d in pdf.compile_pdfs(GENERATED, tmp_path_factory.mktemp("pdf"))}
+
+
+@pytest.fixture(scope="module")
+def texts(pdfs):
+    return {name: pdf.pdf_text(document) for name, document in pdfs.items()}
 
 
 @pytest.mark.parametrize("name", ["suslov_formulas.pdf", "certificates.pdf"])
@@ -137,3 +143,39 @@ def test_bad_statements_are_named():
         say("$p = = 3$")
     with pytest.raises(ValueError, match="unbalanced"):
         say("$Q(a, b[c]$")
+
+
+# -- the prose lint by font (issue 46): what every glyph of a text font is ------------------------
+
+@pytest.mark.parametrize("name", ["suslov_formulas.pdf", "certificates.pdf"])
+def test_prose_is_words_and_typeset_mathematics(pdfs, name):
+    from derivations.output.prose_lint import findings
+
+    found = findings(pdfs[name])
+    assert found == [], f"{name}: {len(found)} runs of text-font prose that are not prose, e.g.\n" + "\n".join(found[:30])
+
+
+def test_the_prose_lint_cannot_be_satisfied_by_avoiding_patterns(tmp_path):
+    """Maths written as ASCII identifiers, with none of the classic patterns, is still found; the same
+    maths typeset, and program names in typewriter type, are not."""
+    from derivations.output.prose_lint import findings
+
+    if shutil.which("pdflatex") is None or shutil.which("pdftohtml") is None:
+        pytest.skip("pdflatex or pdftohtml not installed")
+    lines = {
+        "ascii": r"the solution omega1 of the system tends to the limit rho times I11 as alpha grows",
+        "typeset": r"the solution $\omega_1$ of the system tends to the limit $\rho I_{11}$ as $\alpha$ grows",
+        "code": r"the emitted \texttt{first\_integral} of the module, in \texttt{float64}",
+        "float": r"an error bound of 7e-38 on this interval",
+    }
+    found = {}
+    for key, line in lines.items():
+        source = tmp_path / f"{key}.tex"
+        source.write_text("\\documentclass{article}\\usepackage[T1]{fontenc}\\usepackage{lmodern,amsmath}"
+                          f"\\begin{{document}}\n{line}\n\\end{{document}}\n", encoding="utf-8")
+        subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", source.name], cwd=tmp_path,
+                       capture_output=True, check=True)
+        found[key] = findings(tmp_path / f"{key}.pdf")
+    assert found["typeset"] == [] and found["code"] == []
+    assert len(found["ascii"]) == 1 and all(w in found["ascii"][0] for w in ("omega1", "rho", "I11", "alpha"))
+    assert len(found["float"]) == 1 and "not prose: e" in found["float"][0]

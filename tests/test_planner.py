@@ -24,9 +24,9 @@ def test_every_provider_is_a_step_and_its_needs_come_first():
 
 def test_needs_are_pulled_in_with_their_reason(tmp_path):
     plan = make_plan(scene(tmp_path, "p = 2.5\nd = 0.7", '["integral_drift"]'))
-    assert plan.names() == ["omega", "gamma_integrate", "integrals"]
+    assert plan.names() == ["omega", "gamma_gauss", "integrals"]
     reasons = {s.name: s.reason for s in plan.steps}
-    assert reasons["omega"] == reasons["gamma_integrate"] == "needed by integral_drift"
+    assert reasons["omega"] == reasons["gamma_gauss"] == "needed by integral_drift"
     assert reasons["integrals"] == "integral_drift requested"
     run = execute(plan)
     assert run.results["integral_drift"]["F2"]["max_abs_drift"] < 1e-10
@@ -42,8 +42,8 @@ def test_sleigh_contact_point_needs_the_velocities(tmp_path):
 
 @pytest.mark.parametrize("body, chosen, refused", [
     ("p = 3\nd = 0.5", "gamma_closed_form", None),
-    ("p = 2.5\nd = 0.7", "gamma_integrate", "gamma_closed_form"),
-    ("inertia = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]", "gamma_integrate", "gamma_closed_form"),
+    ("p = 2.5\nd = 0.7", "gamma_gauss", "gamma_closed_form"),
+    ("inertia = [[2.0, 0.1, 0.2], [0.1, 1.0, -0.3], [0.2, -0.3, 1.5]]", "gamma_gauss", "gamma_closed_form"),
 ])
 def test_explain_shows_the_graph_and_the_providers_not_chosen(tmp_path, body, chosen, refused):
     text = make_plan(scene(tmp_path, body, '["gamma"]')).explain()
@@ -67,11 +67,14 @@ def test_the_angle_is_a_closed_form_and_the_integration_is_asked_for_by_name(tmp
 
 
 def test_scipy_method_is_planned_and_named(tmp_path):
-    plan = make_plan(scene(tmp_path, "p = 2.5\nd = 0.7", '["gamma"]', '[numerics]\nmethod = "DOP853"\n'))
+    integrate = '[numerics]\ngamma_route = "integrate"\n'
+    plan = make_plan(scene(tmp_path, "p = 2.5\nd = 0.7", '["gamma"]', integrate + 'method = "DOP853"\n'))
     assert plan.scene.method == "scipy:DOP853"
     assert "SciPy DOP853" in plan.steps[0].method
-    taylor_plan = make_plan(scene(tmp_path, "p = 2.5\nd = 0.7", '["gamma"]'))
+    taylor_plan = make_plan(scene(tmp_path, "p = 2.5\nd = 0.7", '["gamma"]', integrate))
     assert "heyoka Taylor" in taylor_plan.steps[0].method
+    gauss_plan = make_plan(scene(tmp_path, "p = 2.5\nd = 0.7", '["gamma"]', '[numerics]\nmethod = "DOP853"\n'))
+    assert gauss_plan.names() == ["gamma_gauss"] and "gauss_2f1" in gauss_plan.steps[0].method
 
 
 def test_unknown_effect_for_a_body_has_no_provider(tmp_path):

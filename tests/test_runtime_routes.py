@@ -71,7 +71,7 @@ def test_the_listed_points_reach_the_branches_they_name(module, monkeypatch):
 
 def test_two_references_agree_on_theorem_5_2_and_give_the_textbook_value():
     """I13 = 0: the general angle (certified invariants, then the certified angle of any body) at I11 = 2, I22 = 1,
-    I23 = -1/2 is Theorem 5.2's at p = 2, d = 1, which is 2 arccos(1/cosh pi)."""
+    I23 = -1/2 is Theorem 5.4's at p = 2, d = 1, which is 2 arccos(1/cosh pi)."""
     import sympy as sp
     from sympy.codegen.cfunctions import expm1
 

@@ -1,10 +1,10 @@
-"""Scattering angle (Theorem 5.2, corrected): the generated function against independent routes.
+"""Scattering angle (Theorem 5.4, corrected): the generated function against independent routes.
 
 References: (1) the closed form in mpmath at 50 digits (``scattering_angle_mp``) for the
 float64 evaluation; (2) an independent 40-digit integration from t = -oo to +oo
 (``derivations.sections.poisson_taylor``: Frobenius series at the ends, Taylor steps) for the formula
 itself; (3) the full rigid body: a tensor with I13 = 0, integrated with SciPy from the
-ss series start (``suslov.simulator.integrate``), for the map (p, d) <- I (corrected Theorem 5.2 p).
+ss series start (``suslov.simulator.integrate``), for the map (p, d) <- I (corrected Theorem 5.4 p).
 """
 import warnings
 

@@ -26,7 +26,7 @@ def test_a_dict_scene_gives_arrays_and_numbers():
     t, (p, d) = result["t"], (2.5, 0.7)
     assert np.allclose(result["omega"][:, 0], (p / d) * np.tanh(t), rtol=1e-14, atol=1e-14)
     assert np.allclose(result["omega"][:, 1], -(p / d) * math.sqrt(d * d + 1) / np.cosh(t), rtol=1e-14, atol=1e-14)
-    x = math.pi * p / (2 * d)   # Theorem 5.2 (corrected)
+    x = math.pi * p / (2 * d)   # Theorem 5.4 (corrected)
     expected = 2 * math.acos(abs(math.cos(math.pi * p / 2)) / math.cosh(x))
     assert abs(result["scattering_angle"]["radians"] - expected) < 1e-12
     with pytest.raises(KeyError, match="'gamma': not computed"):

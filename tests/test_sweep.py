@@ -1,6 +1,6 @@
 """Sweep scenes (issue 15): points, per-point methods, one table, executors, resume, bad input.
 
-Expected values come from independent routes: the certified closed form of Theorem 5.2 for
+Expected values come from independent routes: the certified closed form of Theorem 5.4 for
 I13 = 0 and the validated ball integration (python-flint, 30 digits) for general bodies.
 """
 import csv
@@ -62,7 +62,7 @@ def test_grid_points_methods_and_table(tmp_path):
         assert row["error"] == ""
         angle = float(row["scattering_angle"])
         if i13 == 0:
-            assert row["scattering_angle_method"] == "closed form (Theorem 5.2)"
+            assert row["scattering_angle_method"] == "closed form (Theorem 5.4)"
         else:
             assert row["scattering_angle_method"].startswith("closed form of every body")
             assert float(row["scattering_angle_error"]) < 1e-12
@@ -256,7 +256,7 @@ def test_explain_prints_the_plan_without_computing(tmp_path, monkeypatch, capsys
 
 def test_enclosure_effect_in_a_sweep_contains_the_float_angle(tmp_path):
     """Both scalar effects per point: the rigorous ball (radius as its error) and the float angle
-    (Theorem 5.2 on I13 = 0, the closed form of every body elsewhere) agree within the ball's radius plus the
+    (Theorem 5.4 on I13 = 0, the closed form of every body elsewhere) agree within the ball's radius plus the
     float bound."""
     text = ('[sweep]\nI11 = 2.0\nI22 = 1.0\nI33 = 1.5\nI13 = [0.0, 0.2]\nI23 = -0.3\n'
             '[effects]\ncompute = ["scattering_angle", "scattering_angle_enclosure"]\n')

@@ -26,7 +26,7 @@ def general_enclosure():
 
 @pytest.mark.parametrize("p, d", [(2.5, 0.7), (3, 0.5), (7.5, 0.2), (0.3, 3.0), (11.2, 0.05)])
 def test_angle_matches_closed_form(p, d):
-    """The general-body definition reduces to Theorem 5.2 for I13 = 0, fast rotation (p/d up to 224) included."""
+    """The general-body definition reduces to Theorem 5.4 for I13 = 0, fast rotation (p/d up to 224) included."""
     body = make_body(p=p, d=d)
     angle, error, run = taylor.taylor_angle(body)
     assert abs(angle - float(gf.scattering_angle(p, d))) < 1e-10

@@ -43,7 +43,7 @@ FAULTS = [
     ("general-ball-target", ("general_scattering_angle_ball",), R + "general_angle.py",
      "_integer_body(exact), prec, prec + 30,", "_integer_body(exact), prec - 64, prec + 30,",
      "the ball stops growing 64 bits early: at |Y| ~ 1e20 it carries fewer relative bits than the prec asked"),
-    # Theorem 5.2's angle: float64, mp twin, ball
+    # Theorem 5.4's angle: float64, mp twin, ball
     ("angle-float-sign", ("scattering_angle",), R + "angle.py", "return np.asarray(emitted(FLOAT, x, s, c), dtype=float)",
      "return np.asarray(emitted(FLOAT, x, s, -c), dtype=float)", "as angle-mp-sign, in float64"),
     ("angle-float-quarter", ("scattering_angle",), R + "angle.py", "> 2.0**1020, 0.25, 1.0)", "> 2.0**1020, 0.5, 1.0)",

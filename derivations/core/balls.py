@@ -27,7 +27,7 @@ from derivations.core.certificates import (
     stopwatch,
 )
 
-METHOD = "ball enclosure (python-flint arb)"
+METHOD = "ball enclosure (`python-flint` `arb`)"
 
 
 def decide(value: arb, tolerance: arb) -> Outcome:
@@ -65,6 +65,6 @@ def certify_enclosure(log: CertificateLog, claim: str, label: str, quantities: C
                 outcome = Outcome.PASS
                 break
     detail = (f"{len(values)} enclosures at {bits} bits ({attempt} doublings): $abs(q) <= {worst.str(3, radius=False)}$ "
-              f"vs tolerance {tolerance.str(3, radius=False)}")
+              f"vs tolerance ${tolerance.str(3, radius=False)}$")
     method = f"{METHOD}{': ' + what if what else ''}; a pass proves the stated bound"
     return log.record(Certificate(claim, label, method, outcome, elapsed[0], work, detail, expected=expect))

@@ -234,7 +234,7 @@ def certify_zero(
             try:
                 form = normal_form(item, domain)
             except Exception as exc:  # unsupported input is "unknown", not a pass
-                outcome, detail = Outcome.UNKNOWN, f"entry {index}: {type(exc).__name__}: {exc}"
+                outcome, detail = Outcome.UNKNOWN, f"entry {index}: `{type(exc).__name__}`: {exc}"
                 break
             work += form.terms_tested
             if form.denominator.is_zero():
@@ -269,6 +269,6 @@ def certify_polys_zero(log: CertificateLog, claim: str, label: str, polys, domai
     work = sum(len(poly.terms()) for poly in polys)
     outcome = Outcome.FAIL if nonzero else Outcome.PASS
     detail = (f"entry {nonzero[0]} has {len(polys[nonzero[0]].terms())} non-zero terms" if nonzero
-              else f"{len(polys)} polynomial(s) identically 0")
+              else f"{len(polys)} polynomial{'' if len(polys) == 1 else 's'} identically 0")
     return log.record(Certificate(claim, label, Statement("exact zero test in ", ring(domain_name)), outcome,
                                   elapsed[0] + seconds, work, detail, expected=expect))

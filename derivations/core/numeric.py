@@ -83,7 +83,7 @@ def corroborate(
             if outcome is Outcome.PASS and worst > mpmath.mpf(10) ** (-digits_required):
                 outcome = Outcome.FAIL
     if not detail:
-        detail = f"{points} points, seed ${seed}$, max relative residual {mpmath.nstr(worst, 3)}"
+        detail = f"{points} points, seed ${seed}$, max relative residual ${mpmath.nstr(worst, 3)}$"
     method = f"mpmath corroboration at {dps} digits (evidence, not proof)"
     return log.record(
         Certificate(claim, label, method, outcome, elapsed[0], points, detail, expected=expect)

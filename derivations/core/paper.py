@@ -137,7 +137,7 @@ LIMIT_TEXT = Printed(
 NECC1 = Printed(
     "eq:necc1",
     r"I_{13}=0,\ \frac{I_{11}-I_{22}}{I_{11}I_{22}(I_{11}I_{22}I_{33}-1)}=p^2",
-    "Theorem 3.1",
+    "Theorem 3.2",
 )
 NECC1_P2 = (I11 - I22) / (I11 * I22 * (I11 * I22 * I33 - 1))
 
@@ -289,7 +289,7 @@ NECCG12 = Printed(
 NECC11 = Printed(
     "eq:necc11",
     r"I_{23}=0,\ \frac{I_{11}-I_{22}}{I_{11}I_{22}(I_{11}I_{22}I_{33}-1)}=-p^2",
-    "Theorem 3.1",
+    "Theorem 3.2",
 )
 LINA = Printed(
     "eq:lina",
@@ -304,14 +304,14 @@ AM1 = Printed(
     "section 3.2",
 )
 THEOREM31 = Printed(
-    "Theorem 3.1",
+    "Theorem 3.2",
     r"\text{all solutions meromorphic iff }I_{13}=0,\ \tfrac{I_{11}-I_{22}}{I_{11}I_{22}(I_{11}I_{22}I_{33}-1)}=p^2"
     r"\text{ or }I_{23}=0,\ \dots=-p^2,\ p\in\mathbb Z^*",
-    "Theorem 3.1, Theorem 3.5",
+    "Theorem 3.2, Theorem 3.5",
 )
 
 NECCG2 = Printed("eq:neccg2", r"ac_1+bc_2=0,\ c_1^2+c_2^2-4(a^2+b^2)=4p^2", "section 3.1, Remark")
-NECC2 = Printed("eq:necc2", r"c_1=b=0,\ c_2^2-4a^2=4p^2", "Theorem 3.1")
+NECC2 = Printed("eq:necc2", r"c_1=b=0,\ c_2^2-4a^2=4p^2", "Theorem 3.2")
 
 RIG = Printed("eq:rig", r"\dot u=A+Bu+Cu^2,\ A=\tfrac12(\omega_2-i\omega_1),\ B=-i\omega_3,\ C=\tfrac12(\omega_2+i\omega_1)",
               "section 5.2")
@@ -324,16 +324,16 @@ RLIN = Printed("eq:rlin", r"r=\frac PQ,\ P=\sum_{i=0}^8p_iz^i,\ Q=4(c^2-1)z^2(z^
                "section 5.2")
 DELTAI = Printed("eq:Deltai", r"\Delta_0=\Delta_5=i\frac pd,\ \Delta_1=\Delta_2=p,\ \Delta_3=\Delta_4=2", "section 5.2")
 
-# Section 5.1, "Monodromy for F1(z) and the angle Delta psi", and Theorem 5.2.
+# Section 5.1, "Monodromy for F1(z) and the angle Delta psi", and Theorem 5.4.
 GAM_0 = Printed("gam_0", r"\gamma_1=-\sqrt{1-z}\;{}_3F_2\Big(\tfrac12,\tfrac{1+p}2,\tfrac{1-p}2;"
                 r"\tfrac12-\tfrac{ip}{2d},\tfrac12+\tfrac{ip}{2d};z\Big)", "section 5.1, Lemma")
 MONODROMY_FACTOR = Printed("Prop. 5.1", r"\mathcal F_1\to\mathcal F_1-2i\exp(\beta_1+\beta_2-\alpha_1-\alpha_2-\alpha_3)"
                            r"(\sigma_1\mathcal F_1+\sigma_2\mathcal F_2+\sigma_3\mathcal F_3)", "section 5.1")
 LIMIT_GAMMA1 = Printed("angle (limit)", r"\lim_{t\to\infty}\gamma_1=1-2i\exp(\pi i/2)\sigma_1"
-                       r"=1-2\frac{\cos^2(\pi p/2)}{\cos^2(\pi ip/(2q))}", "section 5.1, before Theorem 5.2")
-ANGLE = Printed("Theorem 5.2", r"\cos\frac{\Delta\psi}2=\frac{\cos(\pi p/2)}{\cos(\pi ip/(2q))}", "Theorem 5.2")
-ANGLE_P = Printed("Theorem 5.2 (p)", r"d=\sqrt{\frac{I_{11}-I_{22}}{I_{22}}},\ "
-                  r"p=\sqrt{\frac{I_{11}-I_{22}}{I_{11}I_{22}(I_{11}I_{22}I_{33}-1)}}", "Theorem 5.2")
+                       r"=1-2\frac{\cos^2(\pi p/2)}{\cos^2(\pi ip/(2q))}", "section 5.1, before Theorem 5.4")
+ANGLE = Printed("Theorem 5.4", r"\cos\frac{\Delta\psi}2=\frac{\cos(\pi p/2)}{\cos(\pi ip/(2q))}", "Theorem 5.4")
+ANGLE_P = Printed("Theorem 5.4 (p)", r"d=\sqrt{\frac{I_{11}-I_{22}}{I_{22}}},\ "
+                  r"p=\sqrt{\frac{I_{11}-I_{22}}{I_{11}I_{22}(I_{11}I_{22}I_{33}-1)}}", "Theorem 5.4")
 ANGLE_P2 = NECC1_P2
 SS_LIMIT_TEXT = Printed("ss (text)", r"\gamma(t)\to(\cos\Delta\psi,\ \sin\Delta\psi\cos at,\ \sin\Delta\psi\sin at)^T,"
                         r"\ t\to+\infty", "section 4, after eq. ss")

@@ -4,7 +4,7 @@ The paper: Yu. N. Fedorov, A. J. Maciejewski, M. Przybylska, "The Poisson equati
 nonholonomic Suslov problem: integrability, meromorphic and hypergeometric solutions",
 arXiv:0902.0079 (2009).  A formula's ``label`` field (:class:`derivations.core.result.DerivedFormula`)
 names what it derives in the paper's own LaTeX labels (``eq:o12``, ``c's``, ``gam1``), or in words
-(``Theorem 5.2``, ``section 2``, ``Conclusion``); a reader of the paper sees neither, only the printed
+(``Theorem 5.4``, ``section 2``, ``Conclusion``); a reader of the paper sees neither, only the printed
 numbers.  :data:`PRINTED` maps each such name to what the paper prints, and :func:`printed_numbers`
 reads a whole label field.
 
@@ -25,21 +25,21 @@ The source is ``\\documentclass[11pt]{article}`` with amsmath and amsthm, ``\\nu
   Galois group (``\\label{pro:a}``) is **Proposition 5.8**;
 * ``conjecture`` has a counter of its own, not numbered within sections: the only one is **Conjecture 1**.
 
-The project's word labels for numbered statements count differently in four places: ``Theorem 3.1``
-(printed Theorem 3.2), ``Theorem 5.2`` (printed Theorem 5.4), ``Proposition 5.4`` (printed Proposition 5.8)
-and ``Conjecture 5.2`` (the conjecture of section 5.2, printed Conjecture 1).  The label fields keep
-those names (they key certificates, errata and the catalog); the documents print the paper's numbers
-from here.  Checked by hand: (1.2) for ``3.25``, (2.7)/(2.8) for ``eq:o12``/``c's``, (3.1)/(3.2) for the
-two rows of the ``align`` of ``eq:necc1``/``eq:necc11``, (3.6) for ``eq:d``, (5.7) for ``eq:genhip``, (5.25)
-for ``gam_0`` (an ``align`` whose first row is ``\\nonumber``), (6.1)-(6.3) for ``gam1``-``gam3`` (an
-``align`` with an unnumbered second row), Theorem 3.5 and Theorem 6.2 as the project names them.
+The project's label fields name statements as the paper prints them (``Theorem 3.2``, ``Theorem 5.4``,
+``Proposition 5.8``, ``Conjecture 1``).  Revisions before issue 46 counted differently in four places
+(``Theorem 3.1``, ``Theorem 5.2``, ``Proposition 5.4``, ``Conjecture 5.2``); those names still map to the
+printed ones, so ``--diff`` against an old tree reads its labels.  Checked by hand: (1.2) for ``3.25``,
+(2.7)/(2.8) for ``eq:o12``/``c's``, (3.1)/(3.2) for the two rows of the ``align`` of ``eq:necc1``/``eq:necc11``,
+(3.6) for ``eq:d``, (5.7) for ``eq:genhip``, (5.25) for ``gam_0`` (an ``align`` whose first row is
+``\\nonumber``), (6.1)-(6.3) for ``gam1``-``gam3`` (an ``align`` with an unnumbered second row), Theorem 3.5
+and Theorem 6.2.
 
 ``eq:kowal`` is no label of the paper: the project's name for the Kovalevskaya exponents ``1 +- Lambda``,
 the roots of the characteristic polynomial (3.7) of ``K(d)`` (``Lambda`` itself stands in the unnumbered
 display after it); it maps to (3.7).  Labels with no printed number (``derived``: derived here, not in the
 paper; ``example p = 1``; ``Kovalevskaya matrix``, the unnumbered display before (3.7)) are **skipped** by
 :func:`printed_numbers` and returned by :func:`unnumbered`.  A trailing qualifier in parentheses
-(``Theorem 5.2 (p)``, ``ss (text)``, ``Proposition 4.1 (proof, triangle)``) is the project's: the part
+(``Theorem 5.4 (p)``, ``ss (text)``, ``Proposition 4.1 (proof, triangle)``) is the project's: the part
 is looked up without it.  Labels inside the paper's figures (placed before ``\\caption``, so they
 refer to nothing printed) are left out.
 """
@@ -104,14 +104,21 @@ _QUALIFIER = re.compile(r"\s*\([^()]*\)\s*$")
 
 
 def _parts(label_field: str) -> list[str]:
-    """The labels of a label field: split at commas, blanks stripped, empty parts dropped.
+    """The labels of a label field: split at the commas outside parentheses, blanks stripped, empty parts dropped.
 
-    A paper label with a comma of its own (``alpha,beta``) is kept whole.
+    A paper label with a comma of its own (``alpha,beta``) is kept whole, and so is a qualifier with commas
+    (``Proposition 4.1 (proof, triangle)``).
     """
     field = label_field.strip()
     if field in PRINTED:
         return [field]
-    return [part.strip() for part in field.split(",") if part.strip()]
+    parts, depth, start = [], 0, 0
+    for k, ch in enumerate(field + ","):
+        depth += (ch == "(") - (ch == ")")
+        if ch == "," and depth <= 0:
+            parts.append(field[start:k].strip())
+            start = k + 1
+    return [part for part in parts if part]
 
 
 def _lookup(part: str) -> str | None:
@@ -160,3 +167,20 @@ def unnumbered(label_field: str) -> list[str]:
     (['example p = 1'], ['derived'])
     """
     return [part for part in _parts(label_field) if _lookup(part) is None]
+
+
+# a letter standing alone in a qualifier, ``(p)``, or in an equation, ``p = 1``: the paper's variable, not a word
+_VARIABLE = re.compile(r"(?<=\()([a-z])(?=\))|\b([a-z] = -?\d+(?:/\d+)?)\b")
+
+
+def label_statement(text: str) -> str:
+    """A printed label (a number with its qualifier, or a label the paper prints no number for) as statement
+    text, its variables and equations between dollar signs (:func:`derivations.core.statement.say`), so that a
+    document typesets them as mathematics.
+
+    >>> label_statement("Theorem 5.4 (p)"), label_statement("example p = 1"), label_statement("p = 1 integral")
+    ('Theorem 5.4 ($p$)', 'example $p = 1$', '$p = 1$ integral')
+    >>> label_statement("Proposition 4.1 (proof, triangle)"), label_statement("derived here")
+    ('Proposition 4.1 (proof, triangle)', 'derived here')
+    """
+    return _VARIABLE.sub(lambda m: "$" + m.group(0) + "$", text)

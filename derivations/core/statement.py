@@ -14,8 +14,9 @@ A statement is written in the source as one string whose formulas stand between 
 ``"det I = 1 fixes $I33 = (1 + I11 I23^2 + I22 I13^2)/(I11 I22)$"``: each dollar span is read by
 SymPy's own parser (``parse_expr`` with implicit multiplication and application, ``^`` as power,
 ``=`` as an equation, ``evaluate=False`` so that the written form is kept) into a SymPy object when
-the statement is made; a span SymPy cannot read is an error naming the span.  No TeX is written by
-hand.  A string without dollar signs is prose only (what a branch that still writes plain claims
+the statement is made; a span SymPy cannot read is an error naming the span.  A program name in prose
+(a function of the emitted module, a library's type) stands between backticks, ```first_integral```: it
+is set in typewriter type (:class:`Code`) and never read as mathematics.  No TeX is written by hand.  A string without dollar signs is prose only (what a branch that still writes plain claims
 produces): it is typeset as text, so any program syntax in it shows in the PDF, where
 ``tests/test_pdf_text.py`` finds it.
 
@@ -65,10 +66,24 @@ class _Named(sp.Function):
         return self.tex_name + r"\left(" + ", ".join(printer._print(a) for a in self.args) + r"\right)"
 
 
-def _named(name: str, tex: str):
-    cls = type(name, (_Named,), {"tex_name": tex})
+def _named(name: str, tex: str, latex_method=None):
+    members = {"tex_name": tex}
+    if latex_method is not None:
+        members["_latex"] = _powered(latex_method)
+    cls = type(name, (_Named,), members)
     globals()[name] = cls          # a module attribute of its own name: it pickles (worker processes)
     return cls
+
+
+# a program's names written as the mathematics they compute (the text keeps the name: it says how it is evaluated)
+def _expm1_latex(self, printer):
+    return r"\left(e^{" + printer._print(self.args[0]) + r"} - 1\right)"
+
+
+def _atan2_latex(self, printer):
+    y, x = (printer._print(a) for a in self.args)
+    y = y if self.args[0].is_Atom else r"\left(" + y + r"\right)"
+    return r"\arg\left(" + x + r" + i\, " + y + r"\right)"
 
 
 class inner(sp.Function):
@@ -132,12 +147,12 @@ abs_ = type("abs_", (sp.Function,), {"_latex": _powered(_abs_latex), "_sympystr"
 FUNCTIONS = {
     "sqrt": sp.sqrt, "exp": sp.exp, "log": sp.log, "sin": sp.sin, "cos": sp.cos, "tan": sp.tan,
     "sinh": sp.sinh, "cosh": sp.cosh, "tanh": sp.tanh, "sech": sp.sech, "coth": sp.coth, "csch": sp.csch,
-    "expm1": _named("expm1", r"\operatorname{expm1}"), "Abs": sp.Abs, "abs": abs_, "re": sp.re, "im": sp.im,
+    "expm1": _named("expm1", "", _expm1_latex), "Abs": sp.Abs, "abs": abs_, "re": sp.re, "im": sp.im,
     "Re": sp.re, "Im": sp.im, "conjugate": sp.conjugate, "Gamma": sp.gamma, "hyper": sp.hyper,
     "det": _named("det", r"\det"), "diag": _named("diag", r"\operatorname{diag}"),
     "rank": _named("rank", r"\operatorname{rank}"), "tr": _named("tr", r"\operatorname{tr}"),
     "deg": _named("deg", r"\deg"), "Res": _named("Res", r"\operatorname{Res}"),
-    "atan2": _named("atan2", r"\operatorname{atan2}"), "SO": _named("SO", r"\mathrm{SO}"),
+    "atan2": _named("atan2", "", _atan2_latex), "SO": _named("SO", r"\mathrm{SO}"),
     "PSL": _named("PSL", r"\mathrm{PSL}"), "SL": _named("SL", r"\mathrm{SL}"),
     "Derivative": sp.Derivative, "deriv": lambda f, *v: sp.Derivative(f, *v, evaluate=False),
     "Matrix": sp.Matrix, "Sum": sp.Sum, "factorial": sp.factorial, "RisingFactorial": sp.RisingFactorial,
@@ -236,9 +251,19 @@ def math(span: str):
 
 # -- printing -------------------------------------------------------------------------------------
 
+@dataclass(frozen=True)
+class Code:
+    """A program name in prose (a function of the emitted module, a library's type): written ```name```
+    in a statement, set in typewriter type, never read as mathematics."""
+
+    name: str
+
+
 def text_of(part) -> str:
     if isinstance(part, str):
         return part
+    if isinstance(part, Code):
+        return part.name
     if isinstance(part, Ring):
         return part.text()
     return TextPrinter().doprint(part)
@@ -247,6 +272,8 @@ def text_of(part) -> str:
 def tex_of(part) -> str:
     if isinstance(part, str):
         return tex_escape(part)
+    if isinstance(part, Code):
+        return r"\texttt{" + tex_escape(part.name) + "}"
     if isinstance(part, Ring):
         return part.tex(inline=True)
     return "$" + MathPrinter().doprint(part) + "$"
@@ -354,7 +381,7 @@ class Statement:
         for part in parts:
             if isinstance(part, Statement):
                 flat.extend(part.parts)
-            elif isinstance(part, (str, Ring, sp.Basic)):
+            elif isinstance(part, (str, Ring, Code, sp.Basic)):
                 flat.append(part)
             elif isinstance(part, (int, sp.MatrixBase)):
                 flat.append(sp.sympify(part))
@@ -384,7 +411,7 @@ class Statement:
         for part in self.parts:
             if isinstance(part, Ring):
                 out.extend(part.expressions())
-            elif not isinstance(part, str):
+            elif not isinstance(part, (str, Code)):
                 out.append(part)
         return out
 
@@ -428,8 +455,11 @@ def _say(source: str) -> Statement:
     parts = []
     for k, piece in enumerate(pieces):
         piece = piece.replace("\0", "$")
-        if k % 2 == 0:
-            parts.append(piece)
+        if k % 2 == 0:   # prose, with `program names` between backticks
+            names = piece.split("`")
+            if len(names) % 2 == 0:
+                raise ValueError(f"statement {source!r}: an odd number of ` (a program name is not closed)")
+            parts.extend(Code(name) if j % 2 else name for j, name in enumerate(names))
         elif piece.strip().startswith(("Q(", "Z[", "Q[")):
             parts.append(ring(piece.strip()))
         else:

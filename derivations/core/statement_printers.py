@@ -8,6 +8,7 @@ are written in the claims (``1e-15``, ``10^{-15}``), not as Python's repr.
 from __future__ import annotations
 
 import sympy as sp
+from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.str import StrPrinter
 
 from derivations.core.typeset import FormulaPrinter
@@ -21,7 +22,7 @@ SYMBOL_NAMES = {
     "Deltapsi": r"\Delta\psi", "Delta_psi": r"\Delta\psi",
     "gammaI": r"\gamma^{(1)}", "gammaII": r"\gamma^{(2)}", "gammaIII": r"\gamma^{(3)}",
     "g1_inf": r"\gamma_{1}^{\infty}", "eps": r"\varepsilon",
-    "w_m": r"w_{-}", "w_p": r"w_{+}", "Id": r"\mathrm{Id}", "Den": r"\mathrm{Den}",
+    "w_m": r"w_{-}", "w_p": r"w_{+}", "Id": r"\mathrm{Id}", "Den": r"Den", "P1t": r"\tilde{P}_{1}",
     "A0": r"A_{0}", "t0": r"t_{0}", "s0": r"s_{0}",
     "tau_p": r"\tau'", "Wp": r"W'", "Cp": r"C'", "sth": r"\sin\theta", "cth": r"\cos\theta",
     "Iinv": r"I^{-1}", "uxv3": r"(u \times v)_{3}", "wdotw": r"w \cdot w", "OmegadotOmega": r"\Omega \cdot \Omega",
@@ -55,6 +56,9 @@ class TextPrinter(StrPrinter):
 
     def _print_ImaginaryUnit(self, expr):
         return "i"
+
+    def _print_gamma(self, expr):   # the Gamma function; "gamma" reads back as the Poisson vector's symbol
+        return f"Gamma({self._print(expr.args[0])})"
 
     def _print_Float(self, expr):
         return _float_text(expr)
@@ -91,3 +95,10 @@ class MathPrinter(FormulaPrinter):
 
     def _print_Tuple(self, expr):
         return r"\left(" + ", ".join(self._print(a) for a in expr.args) + r"\right)"
+
+    # the real and imaginary parts as operator names (SymPy's ``\operatorname{re}`` reads as a word ``re``)
+    def _print_re(self, expr, exp=None):
+        return self._do_exponent(r"\operatorname{Re}{%s}" % self.parenthesize(expr.args[0], PRECEDENCE["Atom"]), exp)
+
+    def _print_im(self, expr, exp=None):
+        return self._do_exponent(r"\operatorname{Im}{%s}" % self.parenthesize(expr.args[0], PRECEDENCE["Atom"]), exp)

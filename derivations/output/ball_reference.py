@@ -8,7 +8,7 @@ by a route that shares none of their code.  Method:
   ``arb``: sums, products, integer and half-integer powers, tanh, sech, exp, expm1, atan2.  No ``suslov``
   number context and no emitted code is involved.
 * :class:`Reference` feeds it the arguments computed here from their definitions, from the exact inputs (a
-  float is its binary value, ``"0.7"`` is 7/10): Theorem 5.2's evaluation form (certified equal to
+  float is its binary value, ``"0.7"`` is 7/10): Theorem 5.4's evaluation form (certified equal to
   ``cos(Delta psi/2) = |cos(pi p/2)|/cosh(pi p/(2d))``) at ``x = pi |p|/(2d)``, ``s, c = |sin|, |cos| (pi p/2)``;
   for any body the certified invariants ``(U^2, a, b)`` (``w_-^2 = a + i b``), the root ``w_- = X + i Y`` taken
   without cancellation (``2 X |Y| = |b|``), ``h = pi U/2``, ``g = pi (U - X)/2``, then the certified angle.
@@ -145,7 +145,7 @@ class Reference:
         return tuple(self._form("omega_general", ball(t), a, b, ball(I13), ball(I23), branch * (a * b).sqrt()))
 
     def scattering_angle(self, p, d):
-        """Theorem 5.2 (evaluation form, certified equal to cos(Delta psi/2) = |cos(pi p/2)|/cosh(pi p/(2d)))."""
+        """Theorem 5.4 (evaluation form, certified equal to cos(Delta psi/2) = |cos(pi p/2)|/cosh(pi p/(2d)))."""
         p, d = ball(p), ball(d)
         half = p / 2
         return tuple(self._form("scattering_angle", arb.pi() * abs(p) / (2 * d), abs(half.sin_pi()),

@@ -45,10 +45,10 @@ from derivations.core.certificates import (
 )
 
 DPS = 40
-METHOD = "numeric evidence (not a certificate): float64 against the mpmath twin at 40 digits, seeded points"
+METHOD = "numeric evidence (not a certificate): `float64` against the `mpmath` twin at 40 digits, seeded points"
 # why each stays evidence (issue 34), in its method
 WHY_GENERAL = ("; stays evidence: the forward error depends on the conditioning in $Y$ (the angle depends on $Y$ "
-               "modulo 2); the mixed forward-backward bound is proven (general_angle_proof)")
+               "modulo 2); the mixed forward-backward bound is proven (`general_angle_proof`)")
 
 
 def _record(log, claim, ok, seconds, points, worst, method=METHOD):
@@ -157,14 +157,14 @@ def check_basis_mp_exactly(log: CertificateLog, module, p: int, core) -> Certifi
                 ok_sigma = False
         ok = ok_sigma and worst < flint.arb(10) ** -40
     return log.record(Certificate(
-        f"$p = {p}$: gamma_basis_mp equals the certified numerators evaluated exactly at $x = 2/3$, "
+        f"$p = {p}$: `gamma_basis_mp` equals the certified numerators evaluated exactly at $x = 2/3$, "
         "$d = 3/4$ and $x = 5/4$, $d = 15/8$ ($x = exp(t)$; $c$ rational), to $10^(-40)$, with the certified "
         "$sigma$", "round trip",
-        "ball enclosure (python-flint arb, 400 bits) of the exact rows: rationals exact, the phase "
+        "ball enclosure (`python-flint` `arb`, 400 bits) of the exact rows: rationals exact, the phase "
         "$exp(i (p/d) t)$ and the rounding of the input $t$ (times $abs(omega)$) enclosed; 2 points",
         Outcome.PASS if ok else Outcome.FAIL, elapsed[0], len(EXACT_POINTS),
         f"{len(EXACT_POINTS)} points, 9 entries each; worst distance below $10^(-40)$" if ok else
-        f"worst distance ${float(worst.upper()):.3g}$ or sigma differs",
+        f"worst distance ${float(worst.upper()):.3g}$ or $sigma$ differs",
         measured=f"worst distance = {float(worst.upper()):.3g}"))
 
 
@@ -189,8 +189,8 @@ def check_general_scattering_angle(log: CertificateLog, module) -> list:
                 _, a, b, _ = module._gauss_invariants(MP, *(mpmath.mpf(x) for x in body))
                 Y = abs(mpmath.sqrt(mpmath.mpc(a, b)).imag)
             worst = max(worst, _ratio(abs(value - exact), 1e-13 * (1 + Y)))
-    return [_record(log, "general_scattering_angle: float64 within absolute $1e-13 (1 + abs(im(w_m)))$ of "
-                    "general_scattering_angle_mp (odd $p$, $I13$ next to 0, $I11 < I22$, $I11 = I22$, next to the "
+    return [_record(log, "`general_scattering_angle`: `float64` within absolute $1e-13 (1 + abs(im(w_m)))$ of "
+                    "`general_scattering_angle_mp` (odd $p$, $I13$ next to 0, $I11 < I22$, $I11 = I22$, next to the "
                     "equilibrium, a tensor of size $1e150$, 24 seeded bodies)", worst <= 1, elapsed[0], len(bodies),
                     worst, METHOD + WHY_GENERAL)]
 
@@ -216,10 +216,10 @@ def check_special_case_chain(log: CertificateLog, module) -> Certificate:
                 worst = max(worst, float(np.max(np.abs(np.array(w) - np.array(v)))) / 1e-11,
                             abs(found.p - p) / (1e-11 * p), abs(found.d - d) / (1e-11 * d), 0.0 if found.p > 0 else 2.0)
                 points += 1
-    return _record(log, "special_case_parameters chains into $omega$: $p > 0$, $(p, d)$ recovered, and $omega(t, p, d)$ equals "
+    return _record(log, "`special_case_parameters` chains into $omega$: $p > 0$, $(p, d)$ recovered, and $omega(t, p, d)$ equals "
                    "the body's own general solution in the returned frame (to $1e-11$)", worst <= 1, elapsed[0], points,
-                   worst, "numeric evidence (not a certificate): float64, seeded bodies in rotated frames; stays evidence: "
-                   "a rotated float64 body is within rounding of the special case, not in it, so it has no exact "
+                   worst, "numeric evidence (not a certificate): `float64`, seeded bodies in rotated frames; stays evidence: "
+                   "a rotated `float64` body is within rounding of the special case, not in it, so it has no exact "
                    "$(p, d)$ to enclose, and its frame comes from LAPACK's eigenvectors, for which no bound is stated")
 
 
@@ -256,12 +256,12 @@ def check_input_validation(log: CertificateLog, module) -> Certificate:
             except ValueError:
                 continue
             except Exception as error:   # refused, but not with the documented ValueError naming the argument
-                accepted.append(f"{name} ({type(error).__name__})")
+                accepted.append(f"`{name}` (`{type(error).__name__}`)")
                 continue
-            accepted.append(name)
+            accepted.append(f"`{name}`")
     return log.record(Certificate(
-        "input validation: the mp twins refuse precisions outside [1, 10000] digits (the ball form outside "
-        "[16, 100000] bits) and the float functions refuse complex arrays, with ValueError", "round trip",
+        "input validation: the `_mp` twins refuse precisions outside $Interval(1, 10000)$ digits (the ball form outside "
+        "$Interval(16, 100000)$ bits) and the float functions refuse complex arrays, with `ValueError`", "round trip",
         "exhaustive over the listed calls (each must raise)", Outcome.FAIL if accepted else Outcome.PASS, elapsed[0],
         len(calls), ("accepted: " + ", ".join(sorted(set(accepted)))) if accepted else f"{len(calls)} calls refused"))
 
@@ -273,10 +273,10 @@ def check_load_certificates(log: CertificateLog, module, build) -> Certificate:
             document = module.load_certificates()
             ok = (document.get("pmax") == build.options.pmax and isinstance(document.get("certificates"), list)
                   and isinstance(document.get("errata"), list))
-            detail = "pmax, certificates and errata read back" if ok else f"read back: {sorted(document)[:5]}"
+            detail = "`pmax`, certificates and errata read back" if ok else f"read back: `{sorted(document)[:5]}`"
         except Exception as error:   # any failure of the emitted function is the finding
-            ok, detail = False, f"{type(error).__name__}: {error}"
-    return log.record(Certificate("load_certificates returns the certificates document written beside the module",
+            ok, detail = False, f"`{type(error).__name__}`: {error}"
+    return log.record(Certificate("`load_certificates` returns the certificates document written beside the module",
                                   "round trip", "exact comparison", Outcome.PASS if ok else Outcome.FAIL, elapsed[0], 1,
                                   detail))
 

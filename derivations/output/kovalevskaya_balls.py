@@ -1,5 +1,5 @@
 """Consistency checks of ``kovalevskaya_exponents`` and ``meromorphy`` as ball certificates (issue 34; paper
-section 3.1, ``eq:kowal``, ``eq:necc1``, Theorem 3.1 corrected).
+section 3.1, ``eq:kowal``, ``eq:necc1``, Theorem 3.2 corrected).
 
 Part of the round trip's float paths (:mod:`derivations.output.float_paths`).  The reference is the certified
 Kovalevskaya matrix K of the derivation ``kovalevskaya`` (a route sharing nothing with the emitted Lambda^2),
@@ -88,13 +88,13 @@ def check_kovalevskaya_exponents(log: CertificateLog, module, matrix) -> Certifi
             matched = any(all(abs(got[i] - balls[j]) < tolerance for i, j in enumerate(order))
                           for order in itertools.permutations(range(5)))
             if not matched:
-                failures.append(f"body {index}: no matching within 1e-9")
+                failures.append(f"body {index}: no matching within $10^(-9)$")
             points += 1
     return log.record(Certificate(
-        "kovalevskaya_exponents: at eight bodies the five float64 exponents are, as a multiset, within $10^(-9)$ of "
+        "`kovalevskaya_exponents`: at eight bodies the five `float64` exponents are, as a multiset, within $10^(-9)$ of "
         "the eigenvalues of the certified Kovalevskaya matrix $K$ at the body's canonical entries", "round trip",
-        "ball enclosure: $K$ in complex ball arithmetic at 200 bits at the float64 canonical entries read exactly, "
-        "$r = sqrt(I11 I22)$ a ball, its eigenvalues enclosed with multiplicity (Arb's acb_mat_eig_multiple; where "
+        "ball enclosure: $K$ in complex ball arithmetic at 200 bits at the `float64` canonical entries read exactly, "
+        "$r = sqrt(I11 I22)$ a ball, its eigenvalues enclosed with multiplicity (Arb's `acb_mat_eig_multiple`; where "
         "it cannot isolate two, the roots of its ball characteristic polynomial over the certified factor "
         "$(x + 1) (x - 2) (x - 1)$), "
         "a matching within $10^(-9)$ found for every body",
@@ -161,11 +161,11 @@ def check_meromorphy_cases(log: CertificateLog, module, matrix) -> Certificate:
                                 f"p={ball}, odd={exact_odd}" + ("" if clear else ", at a tolerance edge"))
             points += 1
     return log.record(Certificate(
-        "meromorphy: case, $p$ and oddness agree with the exact analysis of bodies built from $(p, d)$ "
-        "(odd, even and non-integer $p$ with $I13 = 0$; $I23 = 0$; neither), at nine float64 bodies", "round trip",
+        "`meromorphy`: case, $p$ and oddness agree with the exact analysis of bodies built from $(p, d)$ "
+        "(odd, even and non-integer $p$ with $I13 = 0$; $I23 = 0$; neither), at nine `float64` bodies", "round trip",
         "exact and ball re-check of the decisions: the case from the exact canonical entries, $p^2 = Lambda^2$ "
         "enclosed from the ball characteristic polynomial of the certified $K$ (within $10^(-12) p$ of the $p$ the "
-        "body was built from), the float $p$ within $10^(-13) Max(1, p)$ of the ball, every decision at least "
+        "body was built from), the `float64` $p$ within $10^(-13) Max(1, p)$ of the ball, every decision at least "
         "$10^(-12)$ away from its tolerance $10^(-9)$",
         Outcome.FAIL if failures else Outcome.PASS, elapsed[0], points,
         "; ".join(failures) if failures else f"{points} bodies agree"))
@@ -207,11 +207,11 @@ def check_meromorphy(log: CertificateLog, module, matrix) -> Certificate:
                     failures.append(f"body {index}: {name} = {value!r} not within 1e-12 of {exact}")
             points += 1
     return log.record(Certificate(
-        "meromorphy's $p^2$ equals $Lambda^2$ of kovalevskaya_exponents in the cases $I13 = 0$, $I23 = 0$ and neither: "
+        "the $p^2$ of `meromorphy` equals the $Lambda^2$ of `kovalevskaya_exponents` in the cases $I13 = 0$, $I23 = 0$ and neither: "
         "at four bodies both are within $10^(-12) Max(1, abs(Lambda^2))$ of the exact $Lambda^2$ at the body's "
         "canonical entries", "round trip",
         "ball enclosure: the characteristic polynomial of the certified Kovalevskaya matrix $K$ in complex ball "
-        "arithmetic at 200 bits (float64 canonical entries read exactly, $r = sqrt(I11 I22)$ a ball) divided by the "
+        "arithmetic at 200 bits (`float64` canonical entries read exactly, $r = sqrt(I11 I22)$ a ball) divided by the "
         "certified factor $(x + 1) (x - 2) (x - 1)$ encloses $Lambda^2$",
         Outcome.FAIL if failures else Outcome.PASS, elapsed[0], points,
         "; ".join(failures) if failures else f"{points} bodies: both within the bound of the ball"))

@@ -4,7 +4,7 @@ Rendered by ``templates/suslov_formulas.py.j2`` (one thin function per entry) so
 holds only what is emitted and this text lives in an ordinary module.  A docstring is the emitted
 function's documentation: formula, paper label, error bound and a runnable example (the docs build and
 ``tests/test_docs.py`` run the examples); ``{scattering_certificates}`` is filled in by the build with
-the keys of Theorem 5.2's certificates.  Each ``call`` passes the emitted functions and data
+the keys of Theorem 5.4's certificates.  Each ``call`` passes the emitted functions and data
 (``_omega``, ``INTEGRAL_PS``, ``_BASIS_SIGMA``, ...) to ``suslov.runtime``.
 """
 from __future__ import annotations
@@ -218,12 +218,12 @@ SECTIONS = [
     """,
             '_basis.gamma_basis_mp(_basis_core, _BASIS_SIGMA, BASIS_PS, t, p, d, dps)'),
     ]),
-    ('scattering angle (Theorem 5.2)', [
+    ('scattering angle (Theorem 5.4)', [
         PublicFunction(
             'scattering_angle',
             'p: ArrayLike, d: ArrayLike',
             'np.ndarray | np.float64',
-            r"""Angle Delta psi in [0, pi] between the axes of the limit steady rotations (Theorem 5.2, corrected).
+            r"""Angle Delta psi in [0, pi] between the axes of the limit steady rotations (Theorem 5.4, corrected).
 
     Case I13 = 0, omega as in :func:`omega`, any real ``p`` (not only integers) and
     ``d > 0``.  With the boundary condition ``ss`` (gamma -> (-1, 0, 0) as t -> -oo) the
@@ -264,7 +264,7 @@ SECTIONS = [
 
     The same emitted expression evaluated in ball arithmetic at ``prec`` bits or ``dps`` digits (default:
     ``mpmath.mp.prec``, as the mp twins follow ``mpmath.mp.dps``): the ball contains
-    the exact value of Theorem 5.2's angle at the given p, d.  ``p``, ``d``: ints, Fractions or
+    the exact value of Theorem 5.4's angle at the given p, d.  ``p``, ``d``: ints, Fractions or
     decimal strings (exact), or floats (their binary value); scalars.  For the angle of a body
     whose p, d are not known exactly, or of a general body (I13 != 0), see
     :func:`suslov.validated.scattering_angle_enclosure` (validated integration).
@@ -288,7 +288,7 @@ SECTIONS = [
         cos^2(Delta psi/2) = [cosh(pi U) |tau|^2 - Re(tau^2)] / (2 sinh^2(pi U)),
         tau = 2 cos(pi kappa),  kappa = (i/2) w_-,  w_-^2 = (u - i v).(u - i v),  U = |u|
 
-    for omega = u tanh t + v sech t (eq:o12); for I13 = 0 it is Theorem 5.2 (corrected), certified
+    for omega = u tanh t + v sech t (eq:o12); for I13 = 0 it is Theorem 5.4 (corrected), certified
     exactly.  Evaluated in a form with no cancellation and no overflow (``_general_angle``); the
     entries broadcast like NumPy arrays (scalars give ``np.float64``), I11, I22 > 0, not I13 = I23 = 0 (the equilibrium).
     Error bound, proven from the run-time code (rounding model, libm calls within 4 ulp) for
@@ -368,7 +368,7 @@ SECTIONS = [
             'meromorphy',
             'I: ArrayLike, tol: float = 1e-9',
             'Meromorphy',
-            r"""Which case of Theorem 3.1 (corrected) holds for a numeric inertia tensor.
+            r"""Which case of Theorem 3.2 (corrected) holds for a numeric inertia tensor.
 
     In the frame of :func:`kovalevskaya_exponents` (I12 = 0, I11 >= I22): ``case`` is
     ``"I13=0"``, ``"I23=0"`` or ``"neither"`` (relative tolerance ``tol``); ``p_squared``

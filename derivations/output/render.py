@@ -26,7 +26,7 @@ import jinja2
 import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
-from derivations.core.paper_numbers import PRINTED, printed_parts
+from derivations.core.paper_numbers import PRINTED, label_statement, printed_parts
 from derivations.core.statement import tex as statement_tex
 from derivations.core.statement import tex_escape   # the templates' tex filter (prose parts escape alike)
 from derivations.core.typeset import latex
@@ -63,7 +63,7 @@ def paper_label(label_field: str, prefix: bool = False) -> str:
     shown = ", ".join(numbered)
     if prefix and shown:
         shown = "paper " + shown
-    return "; ".join(tex_escape(item) for item in [shown, *words] if item)
+    return "; ".join(statement_tex(label_statement(item)) for item in [shown, *words] if item)
 
 
 def numbered_rows(display: str) -> str:

@@ -116,12 +116,12 @@ def certify_emitted(log: CertificateLog, module, emitted: dict) -> list:
         with stopwatch() as elapsed:
             function = getattr(module, f"_{name}", None)
             if function is None:
-                ok, detail = False, f"_{name} is missing from the module"
+                ok, detail = False, f"`_{name}` is missing from the module"
             else:
                 try:
                     values = function(SymbolicContext, *item.args)
                 except Exception as error:  # a broken emitted function is a failed round trip, with the reason
-                    values, detail = None, f"_{name} raised {type(error).__name__}: {error}"
+                    values, detail = None, f"`_{name}` raised `{type(error).__name__}`: {error}"
                 if values is not None:
                     values = values if isinstance(values, tuple) else (values,)
                     reference = item.substituted()
@@ -132,7 +132,7 @@ def certify_emitted(log: CertificateLog, module, emitted: dict) -> list:
                               f" vs certified {reference[bad[0]] if bad else reference}")
                 else:
                     ok = False
-        out.append(_record(log, f"function _{name}: the emitted code equals the certified expression",
+        out.append(_record(log, f"function `_{name}`: the emitted code equals the certified expression",
                            "round trip", EXACT_METHOD, ok, elapsed[0], len(item.outputs), detail))
     return out
 
@@ -146,20 +146,20 @@ def certify_integral_core(log: CertificateLog, module, objects: dict) -> list:
     for p, ff in sorted(objects.items()):
         with stopwatch() as elapsed:
             core = module._integral_core(p, INTEGRAL_RING)
-            differing = [name for name in ("P1t", "M2", "M3", "K", "Den") if getattr(core, name) != getattr(ff, name)]
+            differing = [f"${name}$" for name in ("P1t", "M2", "M3", "K", "Den") if getattr(core, name) != getattr(ff, name)]
             public = module.first_integral_coefficients(p, d_point)
             expected = integral_at(ff, d_point)
-            differing += [f"first_integral_coefficients(p, 3/7)[{name!r}]" for name in ("P1", "P2", "P3")
+            differing += [f"`first_integral_coefficients(p, 3/7)[{name!r}]`" for name in ("P1", "P2", "P3")
                           if public[name] != expected[name]]
-        out.append(_record(log, f"$p = {p}$: first_integral's exact core reproduces the certified P1~, $M2$, $M3$, $K$, Den, "
-                           "and first_integral_coefficients(p, 3/7) the certified $P1, P2, P3$", "round trip",
-                           "exact equality in $Z[d,w1,w2]$ (python-flint) and in $Q(d, w1, w2)$", not differing, elapsed[0],
+        out.append(_record(log, f"$p = {p}$: the exact core of `first_integral` reproduces the certified $P1t$, $M2$, $M3$, $K$, $Den$, "
+                           "and `first_integral_coefficients(p, 3/7)` the certified $P1, P2, P3$", "round trip",
+                           "exact equality in $Z[d,w1,w2]$ (`python-flint`) and in $Q(d, w1, w2)$", not differing, elapsed[0],
                            ff.terms(), "differs: " + ", ".join(differing) if differing else "identical"))
     return out
 
 
 def _core_claim(p: int) -> str:
-    return f"$p = {p}$: gamma_basis's exact core reproduces the certified numerators of $gammaI$ and $V$"
+    return f"$p = {p}$: the exact core of `gamma_basis` reproduces the certified numerators of $gammaI$ and $V$"
 
 
 def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
@@ -168,10 +168,10 @@ def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
     for p, (real, cplx) in sorted(objects.items()):
         with stopwatch() as elapsed:
             mine = module._basis_core(p, BASIS_RING)
-            differing = [f"{kind} component {j + 1}" for kind, got, want in (("gamma^(1)", mine[0], real),
-                                                                           ("V", mine[1], cplx))
+            differing = [f"{kind} component {j + 1}" for kind, got, want in (("$gammaI$", mine[0], real),
+                                                                           ("$V$", mine[1], cplx))
                          for j in range(3) if got.M[j] != want[j]]
-        out.append(_record(log, _core_claim(p), "round trip", "exact equality in $Q[x,d,i]/(i^2+1)$ (python-flint)",
+        out.append(_record(log, _core_claim(p), "round trip", "exact equality in $Q[x,d,i]/(i^2+1)$ (`python-flint`)",
                            not differing, elapsed[0], sum(len(m) for m in real + cplx),
                            "differs: " + ", ".join(differing) if differing else "identical"))
     return out
@@ -186,7 +186,7 @@ def basis_core_by_digest(module, p: int, digest: str) -> tuple:
     with stopwatch() as elapsed:
         real, cplx = module._basis_core(p, BASIS_RING)
         same = numerators_digest(real.M, cplx.M) == digest
-    method = "equal SHA-256 of python-flint's printed numerators (the certifying worker's and the emitted core's)"
+    method = "equal `SHA-256` digests of the numerators as `python-flint` prints them (the certifying worker's and the emitted core's)"
     certificate = Certificate(_core_claim(p), "round trip", method, Outcome.PASS if same else Outcome.FAIL, elapsed[0],
                               sum(len(m) for m in real.M + cplx.M), "identical" if same else "differs")
     return certificate, (real.M, cplx.M)

@@ -51,7 +51,7 @@ from derivations.output.ball_reference import (
 )
 
 LABEL = "round trip"
-METHOD = ("ball enclosure (python-flint arb) of the certified closed form at each listed point, from the exact "
+METHOD = ("ball enclosure (`python-flint` `arb`) of the certified closed form at each listed point, from the exact "
           "inputs, by a route sharing no run-time code; a certificate for these points")
 
 
@@ -118,10 +118,10 @@ class Tally:
     def record(self, log: CertificateLog, claim: str, method: str, seconds: float) -> Certificate:
         outcome = Outcome.FAIL if self.failed else Outcome.UNKNOWN if self.undecided else Outcome.PASS
         if self.failed or self.undecided:
-            detail = f"{self.route}: " + "; ".join((self.failed + self.undecided)[:3])
+            detail = f"`{self.route}`: " + "; ".join((self.failed + self.undecided)[:3])
         else:
             detail = f"{self.points} comparisons at the listed points, each within its bound"
-        return log.record(Certificate(f"{self.route}: {claim}", LABEL, method, outcome, seconds, self.points, detail,
+        return log.record(Certificate(f"`{self.route}`: {claim}", LABEL, method, outcome, seconds, self.points, detail,
                                       measured=f"worst error / bound = {self.worst:.3g}"))
 
 
@@ -154,7 +154,7 @@ GENERAL_OMEGA_MP = ((("7/10", 2, 1, "3/10", "-1/2"), -1, 30), ((-3, 1, 2, "0.3",
 # spanning more than float64's range)
 REPAIR_OMEGA = ((0.5, 1e300, 1e10),)
 REPAIR_GENERAL = ((0.7, 1e300, 1e-300, 1.0, 1.0),)
-# Theorem 5.2: even p, non-integer p, negative p with large d, p next to an odd integer, p and d beyond 2^1020
+# Theorem 5.4: even p, non-integer p, negative p with large d, p next to an odd integer, p and d beyond 2^1020
 # (the scaled branch), tiny p; twins and balls also at an odd p (the angle pi) and exact decimals
 ANGLE = ((2.0, 1.0), (2.5, 0.7), (-2.7, 1e3), (3 - 2.0**-40, 0.5), (7.3, 0.31), (1.5e308, 1e308), (1e-300, 1e-3))
 ANGLE_MP = (((2, 1), 30), (("5/2", "7/10"), 30), (("-27/10", 1000), 30), ((3 - 2.0**-40, 0.5), 30), ((7.3, 0.31), 60))
@@ -221,8 +221,8 @@ def check_omega(log, module, ref) -> list:
     tally = Tally("omega")
     with stopwatch() as elapsed:
         _float_pairs(tally, "omega", module.omega, OMEGA, ref.omega, lambda r, pt: _omega_bound(r, *pt[1:]))
-    certs.append(tally.record(log, f"float64 within its docstring's bound of the certified omega at {len(OMEGA)} "
-                              "points (sech t underflowing, p from 1e-300 to 1e6)", METHOD, elapsed[0]))
+    certs.append(tally.record(log, f"`float64` within its docstring's bound of the certified $omega$ at {len(OMEGA)} "
+                              "points ($sech(t)$ underflowing, $p$ from $1e-300$ to $1e6$)", METHOD, elapsed[0]))
     tally = Tally("omega_mp")
     with stopwatch() as elapsed:
         for args, dps in OMEGA_MP:
@@ -232,15 +232,15 @@ def check_omega(log, module, ref) -> list:
                 if values is not None:
                     tally.within(f"{_call_text('omega_mp', args, dps=dps)} component {i + 1}", values[i],
                                  refs and refs[i], refs and relative(refs[i], dps))
-    certs.append(tally.record(log, f"within $10^(1 - dps)$ relative of the certified omega at {len(OMEGA_MP)} points "
+    certs.append(tally.record(log, f"within $10^(1 - dps)$ relative of the certified $omega$ at {len(OMEGA_MP)} points "
                               "(exact decimals, $dps = 30$ and $45$)", METHOD, elapsed[0]))
     tally = Tally("omega_general")
     with stopwatch() as elapsed:
         for branch in (1, -1):
             _float_pairs(tally, "omega_general", module.omega_general, GENERAL_OMEGA, ref.omega_general,
                          lambda r, pt: (_omega_general_bound(*pt[1:]),) * 2, branch)
-    certs.append(tally.record(log, f"float64 within its docstring's bound of the certified general solution at "
-                              f"{len(GENERAL_OMEGA)} points, both branches of r", METHOD, elapsed[0]))
+    certs.append(tally.record(log, f"`float64` within its docstring's bound of the certified general solution at "
+                              f"{len(GENERAL_OMEGA)} points, both branches of $r$", METHOD, elapsed[0]))
     tally = Tally("omega_general_mp")
     with stopwatch() as elapsed:
         for args, branch, dps in GENERAL_OMEGA_MP:
@@ -262,27 +262,27 @@ def check_repair(log, module, ref) -> Certificate:
         _float_pairs(tally, "omega", module.omega, REPAIR_OMEGA, ref.omega, lambda r, pt: _omega_bound(r, *pt[1:]))
         _float_pairs(tally, "omega_general", module.omega_general, REPAIR_GENERAL, ref.omega_general,
                      lambda r, pt: (_omega_general_bound(*pt[1:]),) * 2, 1)
-    return tally.record(log, "at points whose float64 evaluation is not finite while the value is ($c p$ beyond "
-                        "float64 at $d = 1e10$; entries spanning $1e-300$ to $1e300$), the repaired values are within "
-                        "the docstrings' bounds of the certified omega", METHOD, elapsed[0])
+    return tally.record(log, "at points whose `float64` evaluation is not finite while the value is ($c p$ beyond "
+                        "`float64` at $d = 1e10$; entries spanning $1e-300$ to $1e300$), the repaired values are within "
+                        "the docstrings' bounds of the certified $omega$", METHOD, elapsed[0])
 
 
 # ---------------------------------------------------------------- the scattering angles
 
 
 def check_angles(log, module, ref) -> list:
-    """Theorem 5.2's angle: the float64 route, the mp twin, the ball route."""
+    """Theorem 5.4's angle: the float64 route, the mp twin, the ball route."""
     certs = [_angle_float(log, module, "scattering_angle", ANGLE, ref.scattering_angle,
                           lambda angle: STATED["scattering_angle"],
-                          f"float64 within absolute $1.5e-14$ of Theorem 5.2's angle at {len(ANGLE)} points "
+                          f"`float64` within absolute $1.5e-14$ of the angle of Theorem 5.4 at {len(ANGLE)} points "
                           "(even, non-integer, negative $p$, $p$ next to an odd integer, $p$ and $d$ beyond $2^1020$, "
                           "$p = 1e-300$)")]
     certs.append(_angle_mp(log, module, "scattering_angle_mp", ANGLE_MP, ref.scattering_angle,
-                           f"within $10^(1 - dps)$ relative of Theorem 5.2's angle at {len(ANGLE_MP)} points "
+                           f"within $10^(1 - dps)$ relative of the angle of Theorem 5.4 at {len(ANGLE_MP)} points "
                            "(exact decimals, $dps = 30$ and $60$)"))
     certs.append(_angle_ball(log, module, "scattering_angle_ball", ANGLE_BALL, ref.scattering_angle,
-                             f"the ball contains Theorem 5.2's angle and carries the prec relative bits asked, at "
-                             f"{len(ANGLE_BALL)} points (odd p: the angle pi)"))
+                             f"the ball contains the angle of Theorem 5.4 and carries the `prec` relative bits asked, at "
+                             f"{len(ANGLE_BALL)} points (odd $p$: the angle $pi$)"))
     return certs
 
 
@@ -335,14 +335,14 @@ def check_general_angles(log, module, ref) -> list:
     """The angle of any body: the float64 route (three branches), the mp twin, the ball route."""
     certs = [_angle_float(log, module, "general_scattering_angle", BODY, ref.general_angle,
                           lambda found: _general_bound(*found),
-                          f"float64 within $1e-13 (1 + abs(Y))$ (relative below an angle of 1) of the certified "
+                          f"`float64` within $1e-13 (1 + abs(Y))$ (relative below an angle of 1) of the certified "
                           f"angle at {len(BODY)} bodies: four in the proven domain, one in the ball-checked "
-                          "branch ($I22$ below $2^(-20)$ of the largest entry), one repaired (float64 has no value)")]
+                          "branch ($I22$ below $2^(-20)$ of the largest entry), one repaired (`float64` has no value)")]
     certs.append(_angle_mp(log, module, "general_scattering_angle_mp", BODY_MP, ref.general_angle,
                            f"within $10^(1 - dps)$ relative of the certified angle at {len(BODY_MP)} bodies (exact "
                            "decimals; $abs(Y)$ about $1e20$: 20 digits more than asked)"))
     certs.append(_angle_ball(log, module, "general_scattering_angle_ball", BODY_BALL, ref.general_angle,
-                             f"the ball contains the certified angle and carries the prec relative bits asked, at "
+                             f"the ball contains the certified angle and carries the `prec` relative bits asked, at "
                              f"{len(BODY_BALL)} bodies ($abs(Y)$ about $1e20$: the precision must grow)"))
     return certs
 
@@ -373,12 +373,13 @@ def check_first_integral(log, module, build) -> list:
                         if got is not None:
                             tally.within(_call_text(route, (p, d, w1, w2, *gammas)), got, certified,
                                          bound + arb("5e-324"))
-        what = ("float64 within its docstring's bound $2e-15 (p + 1) s^p G A$"
+        what = ("`float64` within its docstring's bound $2e-15 (p + 1) s^p G A$"
                 if route == "first_integral" else "within $10^(1 - dps) (p + 1) s^p G A$")
         what += (", $G = abs(gamma_1) + abs(gamma_2) + abs(gamma_3)$, $A$ the sum of the moduli of the coefficients $a_ik$")
-        certs.append(tally.record(log, f"{what} of F3 from the certified numerators, evaluated exactly in Q, at "
-                                  f"3 points for $p$ in {{{', '.join(str(q) for q in sorted(set(ps)))}}}", "exact rational evaluation of "
-                                  "the build's certified numerators (Fractions) at each listed point, the comparison "
+        certs.append(tally.record(log, f"{what} of $F3$ from the certified numerators, evaluated exactly in rational "
+                                  f"arithmetic, at 3 points for {' and '.join(f'$p = {q}$' for q in sorted(set(ps)))}",
+                                  "exact rational evaluation of "
+                                  "the build's certified numerators (`fractions.Fraction`) at each listed point, the comparison "
                                   "in 400-bit balls; a certificate for these points", elapsed[0]))
     return certs
 
@@ -410,13 +411,13 @@ def check_basis(log, module, build) -> list:
                         tally.within(f"{_call_text(route, (t, p, d))} row {i + 1} entry {j + 1}", got[i, j],
                                      rows and rows[entry], bound)
         far = sum(1 for d, ts in BASIS_T.items() for t in ts if abs(p * t / d) >= FAR_PHASE)
-        what = ("float64 within absolute $1e-14 (p + 1)^1.5$ (its docstring)" if route == "gamma_basis" else
+        what = ("`float64` within absolute $1e-14 (p + 1)^1.5$ (its docstring)" if route == "gamma_basis" else
                 f"within absolute $10^(1 - dps)$ at $dps = {BASIS_DPS}$")
         certs.append(tally.record(log, f"{what} of the rows from the certified numerators at $p = {p}$, "
                                   f"{sum(len(ts) for ts in BASIS_T.values())} points, {far} with the far phase "
-                                  "($abs(p t/d) >= 5.3e7$: careful_phase)", "ball enclosure (python-flint arb) "
+                                  "($abs(p t/d) >= 5.3e7$: `careful_phase`)", "ball enclosure (`python-flint` `arb`) "
                                   "of the certified numerators at $x = e^t$ and of the phase $e^(i p t/d)$ from the "
-                                  "exact t; a certificate for these points", elapsed[0]))
+                                  "exact $t$; a certificate for these points", elapsed[0]))
     return certs
 
 

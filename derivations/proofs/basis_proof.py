@@ -349,7 +349,7 @@ def certificates(log: CertificateLog, module, p: int, numerators) -> list:
             failure, proof = str(error), None
     domain = "$d$ from $10^(-3)$ to $10^3$, every $t$"
     for branch, where in (("near", "abs(p t/d) < 5.3e7"), ("far", "abs(p t/d) >= 5.3e7")):
-        claim = (f"$p = {p}$: gamma_basis ({'double-double' if branch == 'near' else 'ball'} phase, ${where}$) float64 "
+        claim = (f"$p = {p}$: `gamma_basis` ({'double-double' if branch == 'near' else 'ball'} phase, ${where}$) `float64` "
                  f"within absolute $1e-14 (p + 1)^1.5$ of the exact rows")
         if failure is not None:
             ok, detail, boxes = False, f"no bound: {failure}", 0
@@ -363,11 +363,11 @@ def certificates(log: CertificateLog, module, p: int, numerators) -> list:
                       f"{points} points: {'yes' if same else 'no'}")
             if branch == "far":
                 detail += f"; ball phase within one ulp plus $2^(-70)$ at 6 points: {'yes' if far_ok else 'no'}"
-            detail += (f"; rows as assembled within the proven bound of gamma_basis_mp at {assembled_points} points: "
+            detail += (f"; rows as assembled within the proven bound of `gamma_basis_mp` at {assembled_points} points: "
                        f"{'yes' if assembly <= 1 else 'no'}")
             boxes = proof["boxes"]
         method = METHOD.format(n=boxes) + (f" (domain: {domain}; Dekker's product, Sterbenz's lemma, Higham's bounds "
-                                           "for complex products and dot products in any order; libm calls within 4 "
+                                           "for complex products and dot products in any order; `libm` calls within 4 "
                                            "ulp; coefficients by Parseval from the orthonormal rows)")
         certs.append(log.record(Certificate(claim, "round trip", method, Outcome.PASS if ok else Outcome.FAIL,
                                             elapsed[0] / 2, boxes, detail)))

@@ -12,7 +12,7 @@ emitted code less accurate fails the build (or, with a larger stated bound, show
   1024: exp(-|t|) = 0, expm1(-|t|) = -1), d in [1e-3, 1e3], every p short of overflow (the relative
   bound is invariant under p -> 2^k p and p -> -p): ``|w_i~ - w_i| <= B u |w_i| + 1e-300 (|p|/d) c``
   (the absolute part: sech t underflows for |t| > 708).
-* ``scattering_angle`` (Theorem 5.2, evaluation form): every p, d > 0 with ``x = pi |p|/(2d) <= 1024``
+* ``scattering_angle`` (Theorem 5.4, evaluation form): every p, d > 0 with ``x = pi |p|/(2d) <= 1024``
   (the (x, r) boxes, r = |p - 2 round(p/2)| in [0, 1], cover every pair): ``|Dpsi~ - Dpsi| <= B u``.
 """
 from __future__ import annotations
@@ -150,17 +150,17 @@ def prove_scattering_angle(module) -> Proof:
 
 
 PROOFS = {"omega": prove_omega, "scattering_angle": prove_scattering_angle}   # omega_general added below
-CLAIMS = {"omega": "omega: float64 within $5e-15 abs(omega_i) + 1e-300 (abs(p)/d) sqrt(d^2 + 1)$ of the exact "
+CLAIMS = {"omega": "`omega`: `float64` within $5e-15 abs(omega_i) + 1e-300 (abs(p)/d) sqrt(d^2 + 1)$ of the exact "
                    "$omega$",
-          "scattering_angle": "scattering_angle: float64 within absolute $1.5e-14$ of the exact $Deltapsi$",
-          "omega_general": "omega_general: float64 within $6e-15 B + 1e-300$ of the exact $omega$, "
+          "scattering_angle": "`scattering_angle`: `float64` within absolute $1.5e-14$ of the exact $Deltapsi$",
+          "omega_general": "`omega_general`: `float64` within $6e-15 B + 1e-300$ of the exact $omega$, "
                            "$B = (I11 I22 abs(I23) + I22 abs(I13) r + I11 I22 abs(I13) + I11 abs(I23) r)/D$"}
 
 
 def method(proof: Proof) -> str:
-    return METHOD.format(n=proof.boxes) + (f" (domain: {proof.domain}; libm calls within 4 ulp, square roots "
-                                           "correctly rounded, every operation rounded as $fl(x) = x (1 + e)$ with "
-                                           "$abs(e) <= 2^(-53)$)")
+    return METHOD.format(n=proof.boxes) + (f" (domain: {proof.domain}; `libm` calls within 4 ulp, square roots "
+                                           "correctly rounded, every operation rounded: its exact result $x$ computed as "
+                                           "$x (1 + e)$ with $abs(e) <= 2^(-53)$)")
 
 
 MODEL_P = np.array([1.0, 3.0, 2.0, 0.5, 2.5, 1 + 1e-13, 3 - 1e-13, 2 + 1e-13, 7.3, -2.7, 1e-300, 1e6 + 0.5])

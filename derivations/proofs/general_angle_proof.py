@@ -321,7 +321,7 @@ def prove(module) -> dict:
     return {**first, "angle": worst, "boxes": first["boxes"] + walked}
 
 
-CLAIM = ("general_scattering_angle: float64 within $400 u$ of the exact angle at arguments within relative $200 u$ "
+CLAIM = ("`general_scattering_angle`: `float64` within $400 u$ of the exact angle at arguments within relative $200 u$ "
          "of the exact $h = pi U/2$, $g = pi (U - X)/2$, $Y$ of a body whose entries are within relative $2 u (1 + u)$ "
          "of the given ones (mixed forward-backward bound)")
 
@@ -347,7 +347,7 @@ def certificate(log: CertificateLog, module) -> Certificate:
     method = METHOD.format(n=boxes) + (" (domain: entries scaled by the largest modulus with $I11 >= 2^(-20)$, "
                                        "$I22 >= 2^(-20)$, and $pi U/2 <= 7e13$; stage 1 by operation counts and a walk "
                                        "of the normalised lengths over boxes of $a/abs(w^2)$, stage 2 the emitted angle "
-                                       "over boxes of $(h, g/h)$; libm calls within 4 ulp)")
+                                       "over boxes of $(h, g/h)$; `libm` calls within 4 ulp)")
     return log.record(Certificate(CLAIM, "round trip", method, Outcome.PASS if ok else Outcome.FAIL, elapsed[0], boxes,
                                   detail))
 

@@ -111,10 +111,10 @@ def replica(module, p: int, d: float, w1: float, w2: float, g) -> float:
         return math.inf
 
 
-CLAIM = ("$p = {p}$: first_integral float64 within $2e-15 (p + 1) s^p Sum(abs(g_j) Sum(abs(a_jk), (k, 0, p)), "
+CLAIM = ("$p = {p}$: `first_integral` `float64` within $2e-15 (p + 1) s^p Sum(abs(g_j) Sum(abs(a_jk), (k, 0, p)), "
          "(j, 1, 3)) + 5e-324$ of the exact $F3$ ($s = Max(abs(w1), abs(w2))$, $a_jk$ the coefficients of "
          "$P_j$, $A$ the largest $abs(a_jk)$) where $abs(g_j) <= 1$ and $Sum(abs(g_j) Sum(abs(a_jk), (k, 0, p)), "
-         "(j, 1, 3))$ is at least $2^(-600)$ times $A$, or ValueError where the computed value overflows float64")
+         "(j, 1, 3))$ is at least $2^(-600)$ times $A$, or `ValueError` where the computed value overflows `float64`")
 
 
 def model_points(p: int):

@@ -76,7 +76,7 @@ TITLE = "Polynomial first integrals $P_1,P_2,P_3$ for odd $p$ (section 6.2)"
 REQUIRES = ("special_case",)
 
 D_, W1, W2, G1, G2, G3 = CTX.gens()
-FLINT_DOMAIN = "Z[d,w1,w2,g1,g2,g3] (fraction-free, python-flint fmpz_mpoly)"
+FLINT_DOMAIN = "Z[d,w1,w2,g1,g2,g3] (fraction-free, `python-flint` `fmpz_mpoly`)"
 WRITE_OUT_MAX = 7  # P1, P2, P3 written out in the LaTeX for p <= 7
 
 
@@ -159,9 +159,9 @@ def certify_p(log: CertificateLog, p_value: int, field_pd: dict) -> tuple[Fracti
         dG = scaled_time_derivative(G, scaled_field(field_pd, p_value))
         vanishes = dG.is_zero()
     cert_int = log.record(Certificate(
-        f"$p = {p_value}$: $deriv(F3, t) = 0$ on eq:sysfin + Poisson (F3 = P1 g1 + P2 g2 + P3 g3, P1 = w1 Q)",
+        f"$p = {p_value}$: $deriv(F3, t) = 0$ on eq:sysfin + Poisson ($F3 = P1 g1 + P2 g2 + P3 g3$, $P1 = w1 Q$)",
         "eq:liniowiec", Statement("exact zero test in ", ring(FLINT_DOMAIN)), Outcome.PASS if vanishes else Outcome.FAIL,
-        elapsed[0], len(G), f"$G = K^2 Den F3$ has {len(G)} terms; $K deriv(G, t)$ has {len(dG)} terms"))
+        elapsed[0], len(G), f"$G$ ($F3$ times $K^2$ and the common denominator of $P1$) has {len(G)} terms; $K deriv(G, t)$ has {len(dG)} terms"))
     cert_poly = log.record(Certificate(
         f"$p = {p_value}$: $P2$ is a polynomial ($w1$ divides $K^2 Ptilde_1 - d Ltilde M3$ exactly); $P3$ is one by construction",
         "eq:p23", Statement("exact division in ", ring(FLINT_DOMAIN)), Outcome.PASS if divisible else Outcome.FAIL,
@@ -171,7 +171,7 @@ def certify_p(log: CertificateLog, p_value: int, field_pd: dict) -> tuple[Fracti
         minor = 2 * (2 * (D_**2 + 1) * W1) * (G1 * ff.M2 - G2 * ff.K**2 * ff.P1t)
         independent = not minor.is_zero()
     cert_ind = log.record(Certificate(
-        f"$p = {p_value}$: $F3$ is functionally independent of $F1, F2$ (a 3x3 Jacobian minor is a non-zero polynomial)",
+        f"$p = {p_value}$: $F3$ is functionally independent of $F1$ and $F2$ (a Jacobian minor of order 3 is a non-zero polynomial)",
         "Theorem 6.2", Statement("non-zero test in ", ring(FLINT_DOMAIN)), Outcome.PASS if independent else Outcome.FAIL,
         elapsed[0], len(minor), f"minor $d(F1,F2,F3)/d(w1,g1,g2)$ has {len(minor)} terms"))
     return ff, [cert_int, cert_poly, cert_ind]
@@ -235,7 +235,7 @@ def rational_polys(ff: FractionFree) -> list[sp.Poly]:
     return polys
 
 
-QD_FIELD = "Q(d)[w1,w2,g1,g2,g3] (SymPy Poly over the field QQ(d))"
+QD_FIELD = "Q(d)[w1,w2,g1,g2,g3] (SymPy `Poly` over the field $Q(d)$)"
 
 
 @functools.lru_cache(maxsize=256)   # the same constants (w1, w2, 1/(d^2+1), gamma, signs) are asked for again and again
@@ -357,7 +357,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                 printed_sign = sympy_integral(p_value, lambda j: hypergeometric_coefficient(j, p_value, d), p3_sign=1)
                 residual = lie_residual(printed_sign, field)
             refuted["p23"].append(certify_polys_zero(
-                log, f"$p = {p_value}$: printed eq:p23 (P3 = +(d/p) L P1, P2 from it) gives a first integral",
+                log, f"$p = {p_value}$: printed eq:p23 (the plus sign, $P3 = (d/p) L P1$, and $P2$ from it) gives a first integral",
                 paper.P23.label, [residual], QD_FIELD, expect=Outcome.FAIL, seconds=built[0]))
             if p_value >= 3:
                 with stopwatch() as built:
@@ -370,11 +370,11 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
 
     if 1 in forms:
         P = forms[1]
-        c_p1 = certify_zero(log, "printed $p = 1$ integral = d x derived $F3$", paper.P1_INTEGRAL.label,
+        c_p1 = certify_zero(log, "printed $p = 1$ integral equals $d$ times the derived $F3$", paper.P1_INTEGRAL.label,
                             paper.P1_INTEGRAL_F3 - d * (P[0] * g1 + P[1] * g2 + P[2] * g3), QD)
         result.errata.append(erratum(paper.P1_INTEGRAL, "confirmed",
                                      r"F_3=\omega_1\gamma_1+\frac{\omega_2\gamma_2-d\,\omega_2\gamma_3}{d^2+1}",
-                                     "equal up to the constant factor $d$ (normalisation P1 = w1 Q)", c_p1))
+                                     "equal up to the constant factor $d$ (normalisation $P1 = w1 Q$)", c_p1))
     if refuted["p23"]:
         result.errata.append(erratum(
             paper.P23, "corrected", r"P_3=-\frac{d}{p}\Big(\frac{\omega_2}{d^2+1}\frac{\partial P_1}{\partial\omega_1}"
@@ -387,8 +387,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
             r"\mathcal F_1(z)=\sum_{j=0}^{(p-1)/2}\frac{(2j-1)!!}{(2j)!!}\prod_{m=0}^{j-1}"
             r"\frac{((2m+1)^2-p^2)\,d^2}{(2m+1)^2d^2+p^2}\,z^j",
             "sign $(-1)^j$ missing and denominators $(2m+1)d^2+p^2$ instead of $(2m+1)^2 d^2+p^2$; the printed "
-            "Pochhammer symbol (a)_k = a(a+1)...(a+k) has one factor too many (the coefficients above use "
-            "(a)_k = a(a+1)...(a+k-1))", *refuted["pol_sol"], proofs[3]))
+            "Pochhammer symbol $RisingFactorial(a, k)$ has the $k + 1$ factors $a + m$, $m$ from $0$ to $k$: one factor too "
+            "many (the coefficients above use the $k$ factors, $m$ from $0$ to $k - 1$)", *refuted["pol_sol"], proofs[3]))
 
     # the SymPy forms of the written-out P{p} (formula catalog); the catalog's family for every certified p is
     # written at run time from the same certified recipe (suslov.catalog_families), not stored

@@ -36,6 +36,7 @@ from derivations.core.differential import S, T, t
 from derivations.core.errata import erratum
 from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
+from derivations.core.statement import tex
 from derivations.core.symbols import I11, I13, I22, I23, p, w1, w2
 from derivations.sections.fuchsian_balls import DIGITS, monodromy_summary
 from derivations.sections.model import R_EXT
@@ -56,6 +57,24 @@ BODIES = (("odd $p = 1$", "2", "1", "0", "-1"), ("odd $p = 3$", "2", "1", "0", "
 
 # the monodromy of the representative bodies needs no other result: started with the build (CertificateLog.prefetch)
 PREFETCH = (("monodromy of representative bodies", [tuple(body) for _, *body in BODIES], monodromy_summary),)
+
+
+# the tests of suslov.kernel.monodromy and suslov.validated, named for the certificates' details (their own
+# statements are sentences; the details list them all, one short name each)
+_TEST_NAMES = (("every monodromy matrix lies in", "matrices in $SO(3, C)$"),
+               ("the ordered product", "relation of the loops"),
+               ("a generator has an eigenvalue", "infinite order"),
+               ("a commutator has a trace", "irreducible"),
+               ("the squares of two elements", "primitive"),
+               ("the local monodromy at", "trivial local monodromy at $x = pm(i)$"),
+               ("the ball verdict agrees", "agreement with the exact decision"),
+               ("the differential Galois group, decided exactly", "exact decision (Kimura)"))
+_VERDICT_WORDS = {"SO(3,C)": "$SO(3, C)$"}
+
+
+def _test_name(text: str) -> str:
+    """The short name of one monodromy test (its statement's first words identify it)."""
+    return next((name for start, name in _TEST_NAMES if text.startswith(start)), "another test")
 
 
 def cross(w) -> sp.Matrix:
@@ -150,11 +169,11 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
     for (case, *body), summary in zip(BODIES, log.map_per_p(*PREFETCH[0])):
         summaries[case] = summary
         claim = (f"body $(I11, I22, I13, I23) = ({', '.join(body)})$, {case}: the differential Galois group of eq:whole is "
-                 + ("SO(3,C) (= PSL(2,C)): no Liouvillian solutions" if summary["verdict"] == "SO(3,C)" else
+                 + ("$SO(3, C)$ (isomorphic to $PSL(2, C)$): no Liouvillian solutions" if summary["verdict"] == "SO(3,C)" else
                     "reducible (a torus): Liouvillian" if summary["verdict"] == "reducible" else "decided"))
         outcome = {"SO(3,C)": Outcome.PASS, "reducible": Outcome.PASS}.get(summary["verdict"], Outcome.UNKNOWN)
-        detail = "; ".join(f"{text.split(':')[0]}: {outcome_}" for text, outcome_, _ in summary["certificates"])
-        cert = log.record(Certificate(claim, "Conclusion", "ball enclosure (python-flint acb): validated Taylor steps "
+        detail = "; ".join(f"{_test_name(text)}: {outcome_}" for text, outcome_, _ in summary["certificates"])
+        cert = log.record(Certificate(claim, "Conclusion", "ball enclosure (`python-flint` `acb`): validated Taylor steps "
                                       f"with majorant bounds along loops in $x = e^t$, ${DIGITS}$ digits",
                                       outcome, summary["seconds"], len(summary["certificates"]), detail[:400]))
         verdict_certs.append(cert)
@@ -168,27 +187,27 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
     # (the p of the exact analysis this build ran: --pmax 1 or 2 has no row for p = 2 or 3)
     agree &= all((logarithms[p_] == "no logarithms") == (p_ % 2 == 1) for p_ in (1, 2, 3) if p_ in logarithms)
     c_agree = log.record(Certificate(
-        "the verdicts agree with the exact Frobenius analysis at $t0 = i pi/2$: reducible (Liouvillian) exactly for odd p "
-        "(I13 = 0, or $I23 = 0$ by eq:lina); even and non-integer $p$ and $I13 != 0$ give $SO(3,C)$", "Theorem 3.5",
+        "the verdicts agree with the exact Frobenius analysis at $t0 = i pi/2$: reducible (Liouvillian) exactly for odd $p$ "
+        "($I13 = 0$, or $I23 = 0$ by eq:lina); even and non-integer $p$ and $I13 != 0$ give $SO(3, C)$", "Theorem 3.5",
         "comparison of the ball verdicts with the exact logarithm verdicts", Outcome.PASS if agree else Outcome.FAIL,
-        0.0, len(rows), ", ".join(f"{row['case']}: {row['verdict']}" for row in rows)))
+        0.0, len(rows), ", ".join(f"{row['case']}: {_VERDICT_WORDS.get(row['verdict'], row['verdict'])}" for row in rows)))
     even = summaries[next(row for row in rows if row["case"].startswith("even"))["case"]]
     finite = next(c for c in even["certificates"] if "infinite order" in c[0])[1]
     c_wrong = log.record(Certificate(
-        "the monodromy group of the body with p = 2 (I13 = 0) is finite", "Conclusion",
+        "the monodromy group of the body with $p = 2$ ($I13 = 0$) is finite", "Conclusion",
         "ball enclosure: an eigenvalue of modulus other than 1 refutes it", Outcome.FAIL if finite == "pass" else Outcome.UNKNOWN,
-        0.0, 1, "$tr M(x=0) - 1$ lies outside [-2, 2]: an element of infinite order", expected=Outcome.FAIL))
+        0.0, 1, "$tr(M(x=0)) - 1$ lies outside $Interval(-2, 2)$: an element of infinite order", expected=Outcome.FAIL))
     # the Conclusion's meromorphy, tested on the group itself: a solution meromorphic at t0 = i pi/2 for every
     # initial value means a trivial local monodromy there (x = e^t is biholomorphic near t0, x = i)
     c_meromorphic = log.record(Certificate(
         "for $I13 = 0$ and $p = 2$ every solution of eq:whole is meromorphic at $t0 = i pi/2$ (the local monodromy, the "
-        "loop about x = i, is the identity)", "Conclusion",
-        f"ball enclosure (python-flint acb, {DIGITS} digits): an entry of $M(x=i) - I$ whose ball excludes 0 refutes it",
+        "loop about $x = i$, is the identity)", "Conclusion",
+        f"ball enclosure (`python-flint` `acb`, {DIGITS} digits): an entry of $M(x=i) - I$ whose ball excludes 0 refutes it",
         Outcome.FAIL if even["not_identity_at_i"] else Outcome.UNKNOWN, 0.0, 9,
-        f"Re tr M(x=i) = {even['re_trace_at_i']} (unipotent), $M(x=i) != I$: a logarithm "
+        f"the real part of $tr(M(x=i))$ is {even['re_trace_at_i']} (unipotent), $M(x=i) != I$: a logarithm "
         "at $t0$, independently of the exact Frobenius recursion (residue)", expected=Outcome.FAIL))
     result.formula("galois_group", "Conclusion", "Differential Galois group of the Poisson equations (certified verdicts)",
-                   [r"\text{" + row["case"] + r"}:\ (" + ",".join(row["body"]) + r")\ \to\ "
+                   [r"\text{" + tex(row["case"]) + r"}:\ (" + ",".join(row["body"]) + r")\ \to\ "
                     + (r"SO(3,\mathbb C)\ (\text{not Liouvillian})" if row["verdict"] == "SO(3,C)" else
                        r"\text{reducible (Liouvillian)}" if row["verdict"] == "reducible" else r"\text{unknown}")
                     for row in rows], *verdict_certs, c_agree,
@@ -198,8 +217,8 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
     result.errata.append(erratum(
         paper.CONCLUSION_EVEN, "corrected",
         r"\text{even }p:\ \text{logarithms at }t_0=i\pi/2;\ \mathrm{Gal}=SO(3,\mathbb C)",
-        "the Liouvillian part holds (the Galois group is $SO(3,C)$, certified from the monodromy); the meromorphy "
+        "the Liouvillian part holds (the Galois group is $SO(3, C)$, certified from the monodromy); the meromorphy "
         "part does not: the exact Frobenius recursion finds logarithms for every even $p$, and for $p = 2$ the ball of "
-        "the monodromy about x = i excludes the identity", c_agree, c_wrong, c_meromorphic, *verdict_certs))
+        "the monodromy about $x = i$ excludes the identity", c_agree, c_wrong, c_meromorphic, *verdict_certs))
     result.exports.update(rows=rows)
     return result

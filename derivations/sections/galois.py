@@ -2,7 +2,7 @@
 
 Labels: ``eq:ui``, ``eq:gi``, ``eq:rig``, ``eq:ABC``, ``eq:r2``, ``eq:lin``,
 ``eq:2rzedu``, ``eq:rlin`` (P = sum p_i z^i), ``eq:Q``, ``eq:Deltai``, the
-Conjecture of section 5.2 and Proposition 5.4.
+Conjecture of section 5.2 and Proposition 5.8.
 
 Method
 ------
@@ -30,7 +30,7 @@ Method
    symmetry (w, m) -> (-w, -m), s4 from s3 by m -> 1/m.  Choice measured: the earlier fraction-free
    recursion in Q(i)[m] with powers of the leading coefficient (m-degree 28p - 1) took about 80 s
    at p = 101 and p^3.7 growth; this one takes about 2 s there.
-5. *Proposition 5.4*: for even p, every choice of local exponents compatible
+5. *Proposition 5.8*: for even p, every choice of local exponents compatible
    with the logarithmic points gives ``deg R = -sum rho_i < 0``: enumerated.
 """
 from __future__ import annotations
@@ -296,8 +296,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     A1, B1 = -As * Cs, Bs + C1 / Cs
     u = -W1 / (Cs * W)
     udot = -((B1 * W1 + A1 * W) * Cs * W - W1 * (C1 * W + Cs * W1)) / (Cs * W) ** 2
-    c_lin = certify_zero(log, "u = -w'/(C w) solves the Riccati equation iff w'' - B1 w' - A1 w = 0 "
-                         "(A1 = -A C, B1 = B + C'/C)", "eq:r2, eq:lin", udot - (As + Bs * u + Cs * u**2),
+    c_lin = certify_zero(log, "$u = -deriv(w, t)/(C w)$ solves the Riccati equation iff $deriv(w, t, 2) - B1 deriv(w, t) - A1 w = 0$ "
+                         "($A1 = -A C$, $B1 = B + deriv(C, t)/C$)", "eq:r2, eq:lin", udot - (As + Bs * u + Cs * u**2),
                          Domain("Q(W,Wp,C,Cp,A,B)"))
     result.formula("riccati", "eq:rig, eq:ABC, eq:lin", "Riccati form and the linear equation",
                    r"\dot u=A+Bu+Cu^2,\ A=\tfrac12(\omega_2-i\omega_1),\ B=0,\ C=\tfrac12(\omega_2+i\omega_1);\quad"
@@ -311,12 +311,12 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     pz, qz, N, Qd = derived_pqr()
     ppz, pqz = printed_pq()
     P, Q = printed_PQ()
-    c_pq = certify_zero(log, "in $z = e^t$: w'' + p(z) w' + q(z) w = 0 with the printed $p(z), q(z)$", "eq:2rzedu",
+    c_pq = certify_zero(log, "in $z = e^t$: $deriv(w, z, 2) + p(z) deriv(w, z) + q(z) w = 0$ with the printed $p(z)$, $q(z)$", "eq:2rzedu",
                         [pz - ppz, qz - pqz], ZC)
     with stopwatch() as elapsed:
         same_r = (N - sp.Poly(P, z, cc, p, domain=sp.QQ_I)).is_zero and (Qd - sp.Poly(Q, z, cc, p, domain=sp.QQ_I)).is_zero
     c_r = log.record(Certificate("$r = deriv(p, z)/2 + p^2/4 - q$ equals the printed $P/Q$ ($p_0$ to $p_8$, eq:Q)", "eq:rlin, eq:Q",
-                                 "exact polynomial identity in Q(i)[z, c, p]", Outcome.PASS if same_r else Outcome.FAIL,
+                                 "exact polynomial identity in $Q(i)[z, c, p]$", Outcome.PASS if same_r else Outcome.FAIL,
                                  elapsed[0], len(N.terms())))
     pz_factored = sp.factor(pz)
     w_z, y_z = sp.Function("w")(z), sp.Function("y")(z)
@@ -338,7 +338,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     Kp = ring_mp.get_field()
     points = POINTS
     d_m = (m**2 - 1) / (2 * m)
-    c_sing = certify_zero(log, "$Q$ vanishes at $s0 = 0$, s1,2 = +-i, s3,4 = -i(c +- d)", "eq:Q",
+    c_sing = certify_zero(log, "$Q$ vanishes at $s0 = 0$, $s1 = i$, $s2 = -i$, $s3 = -i (c + d)$, $s4 = -i (c - d)$", "eq:Q",
                           [Q.xreplace(to_m).xreplace({z: pt}) for pt in points.values()], Domain("Q(m)[i]"))
     deltas = {}
     for name, pt in points.items():
@@ -346,7 +346,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         deltas[name] = Kp.to_sympy(1 + 4 * rho0)
     deltas["s5"] = Kp.to_sympy(1 + 4 * num.LC() / den.LC())  # r ~ rho/z^2 at infinity
     expected = {"s0": -p**2 / d_m**2, "s5": -p**2 / d_m**2, "s1": p**2, "s2": p**2, "s3": 4, "s4": 4}
-    c_delta = certify_zero(log, "$Delta^2 = 1 + 4 rho0$: Delta0 = Delta5 = i p/d, Delta1 = Delta2 = p, Delta3 = Delta4 = 2",
+    c_delta = certify_zero(log, "$Delta^2 = 1 + 4 rho0$: $Delta0 = Delta5 = i p/d$, $Delta1 = Delta2 = p$, $Delta3 = Delta4 = 2$",
                            "eq:Deltai", [deltas[k] - expected[k] for k in expected], Domain("Q(m,p)[i]"))
     result.formula("deltas", "eq:Q, eq:Deltai", "Singular points and exponent differences",
                    r"s_0=0,\ s_{1,2}=\pm i,\ s_{3,4}=-i(c\pm d),\ s_5=\infty;\quad \Delta_0=\Delta_5=\frac{ip}{d},\ "
@@ -361,20 +361,20 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     rows = []
     # r is invariant under m -> 1/m (it depends on c and d^2 only), which exchanges s3 and s4
     swapped = cancelled((num_e / den_e).xreplace({m: 1 / m}) - num_e / den_e, Domain("Q(m,p)(z)[i]"))
-    c_swap = certify_zero(log, "r(z; 1/m) = r(z; m): the parametrisation's m -> 1/m (d -> -d) exchanges $s3$ and $s4$",
+    c_swap = certify_zero(log, "$r(z)$ is the same at $1/m$ as at $m$: the parametrisation's $to(m, 1/m)$ ($to(d, -d)$) exchanges $s3$ and $s4$",
                           "eq:rlin", swapped, Domain("Q(m,p)(z)[i]"))
     # the decisions run in w = -i z, where the reduced form is real
     num_w, den_w = rotated_form()
     expected_den = 1024 * m**6 * (m**2 - 1) ** 2 * w**2 * (w - 1) ** 2 * (w + 1) ** 2 * (w + m) ** 2 * (m * w + 1) ** 2
-    c_rot = certify_zero(log, "in $w = -i z$, $y_ww = rt(w) y$ with rt(w) = -r(i w) = N(w)/Q(w) real (in Q(m, p)(w)), "
-                         "Q a constant times $w^2 (w-1)^2 (w+1)^2 (w+m)^2 (mw+1)^2$: double poles at $w = 0$, $1$, $-1$, $-m$, "
+    c_rot = certify_zero(log, "in $w = -i z$, $deriv(y, w, 2) = rtilde(w) y$ with $rtilde(w) = -r(i w) = N(w)/Q(w)$ real (in $Q(m, p)(w)$), "
+                         "$Q$ a constant times $w^2 (w-1)^2 (w+1)^2 (w+m)^2 (m w+1)^2$: double poles at $w = 0$, $1$, $-1$, $-m$, "
                          "$-1/m$, i.e. $z = s0$, $s1$, $s2$, $s3$, $s4$", "eq:rlin, eq:Q",
                          [num_w - num_w.xreplace({sp.I: -sp.I}), den_w - den_w.xreplace({sp.I: -sp.I}),
                           den_w - sp.expand(expected_den)],
                          Domain("Q(m,p)[w]"))
     mirrored = cancelled((num_w / den_w).xreplace({w: -w, m: -m}) - num_w / den_w, Domain("Q(m,p)(w)"))
-    c_mirror = certify_zero(log, "rt(-w; -m) = rt(w; m): w -> -w maps s1 (w = 1) to s2 (w = -1) with m -> -m, so "
-                            "the obstruction at $s2$ is the one at $s1$ with m -> -m (zero iff it is)", "eq:rlin",
+    c_mirror = certify_zero(log, "$rtilde(w)$ is unchanged by $to(w, -w)$ with $to(m, -m)$, which maps $s1$ ($w = 1$) to $s2$ ($w = -1$), so "
+                            "the obstruction at $s2$ is the one at $s1$ with $to(m, -m)$ (zero iff it is)", "eq:rlin",
                             mirrored, Domain("Q(m,p)(w)"))
     # the per-p decisions are independent: run in parallel (CertificateLog.map_per_p), recorded in p order
     values = list(range(1, galois_pmax + 1))
@@ -383,19 +383,20 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         conjecture = ("no log" if p_value % 2 else "log")
         ok = verdict["s1"] == verdict["s2"] == conjecture and verdict["s3"] == verdict["s4"] == "no log"
         cert = log.record(Certificate(
-            f"p = {p_value}: s1, s2 " + ("non-logarithmic for every $d > 0$" if p_value % 2 else
+            f"$p = {p_value}$: $s1$, $s2$ " + ("non-logarithmic for every $d > 0$" if p_value % 2 else
                                          "logarithmic for all but finitely many $d > 0$")
-            + ", $s3, s4$ non-logarithmic for every $d > 0$", "Conjecture 5.2",
+            + ", $s3$, $s4$ non-logarithmic for every $d > 0$", "Conjecture 1",
             "exact Frobenius obstruction in $Q(m)$ at $w = 1$ and $w = -m$ ($w = -i z$, $c = (m^2 + 1)/(2 m)$, $d = (m^2 - 1)/(2 m)$), "
-            "denominators cleared by the least $E$ with $den(r_j)$ divides $E^j$ (derivations.sections.local_obstruction)",
+            "denominators cleared by the least $K$ such that the denominator of $r_j$ divides $K^j$ "
+            "(`derivations.sections.local_obstruction`)",
             Outcome.PASS if ok else Outcome.FAIL, seconds, 4,
-            ", ".join(f"{k}: {v}" for k, v in verdict.items())))
+            ", ".join(f"${k}$: {v}" for k, v in verdict.items())))
         rows.append({"p": p_value, "s1": verdict["s1"], "s2": verdict["s2"], "s3": verdict["s3"], "s4": verdict["s4"],
                      "certificate": cert.key})
-    result.formula("conjecture", "Conjecture 5.2", f"Logarithms at $s_1,\\dots,s_4$ for $p\\le{galois_pmax}$ (the check of the "
+    result.formula("conjecture", "Conjecture 1", f"Logarithms at $s_1,\\dots,s_4$ for $p\\le{galois_pmax}$ (the check of the "
                    "theorem on the poles)",
                    r"s_1,s_2\text{ logarithmic}\iff p\text{ even};\quad s_3,s_4\text{ never}", c_swap, c_rot, c_mirror,
-                   *[c for c in log.certificates if c.derivation == NAME and c.label == "Conjecture 5.2"],
+                   *[c for c in log.certificates if c.derivation == NAME and c.label == "Conjecture 1"],
                    # the statement's relations: the four points and their integer exponent differences (a logarithm
                    # is possible only at a point whose exponent difference is an integer)
                    expr=sp.Tuple(*singular_points_expr()[1:5], *exponent_differences_expr()[1:5]),
@@ -403,14 +404,14 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                                (r"even $p$: logarithmic for all but finitely many $d>0$ (for every $d>0$ by the theorem "
                                 r"on the poles)")])
     result.notes.append(
-        f"Conjecture (section 5.2) decided for every $p <= {galois_pmax}$: $s1, s2$ are logarithmic exactly for even $p$; "
-        "$s3, s4$ never. The obstruction for odd $p$ vanishes identically in $m$ (all d > 0); for even $p$ it is a non-zero "
+        f"Conjecture (section 5.2) decided for every $p <= {galois_pmax}$: $s1$, $s2$ are logarithmic exactly for even $p$; "
+        "$s3$, $s4$ never. The obstruction for odd $p$ vanishes identically in $m$ (all $d > 0$); for even $p$ it is a non-zero "
         "element of $Q(m)$, so logarithms occur for all but finitely many $d$ (and the Frobenius recursion of the "
-        "Poisson system itself, section 3.2, shows them for every d > 0). The conjecture is proved for every $p$ and every "
-        "$d > 0$ by the theorem on the poles (pole_theorem: Gauss's equation at $s = i$, $Lambda = p$); this per-p table "
+        "Poisson system itself, section 3.2, shows them for every $d > 0$). The conjecture is proved for every $p$ and every "
+        "$d > 0$ by the theorem on the poles (`pole_theorem`: Gauss's equation at $s = i$, $Lambda = p$); this per-$p$ table "
         "is its check.")
 
-    # Proposition 5.4 bookkeeping for even p
+    # Proposition 5.8 bookkeeping for even p
     prop_rows = []
     for p_value in [q for q in range(2, galois_pmax + 1, 2)]:
         with stopwatch() as elapsed:
@@ -426,9 +427,9 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                     ns.add(int(rational))
             ok = bool(ns) and max(ns) < 0
         cert = log.record(Certificate(
-            f"$p = {p_value}$: every admissible exponent choice gives deg R = -sum rho_i < 0 (no exponential solution)",
-            "Proposition 5.4", "enumeration of exponent choices (exact rationals)", Outcome.PASS if ok else Outcome.FAIL,
-            elapsed[0], len(ns), f"deg R in {sorted(ns)}"))
+            f"$p = {p_value}$: every admissible exponent choice gives $deg(R) = -Sum(rho_k, (k, 0, 5)) < 0$ (no exponential solution)",
+            "Proposition 5.8", "enumeration of exponent choices (exact rationals)", Outcome.PASS if ok else Outcome.FAIL,
+            elapsed[0], len(ns), "values of $deg(R)$: " + ", ".join(f"${n}$" for n in sorted(ns))))
         prop_rows.append({"p": p_value, "degrees": sorted(ns), "certificate": cert.key})
     result.exports.update(log_rows=rows, prop_rows=prop_rows, galois_pmax=galois_pmax)
     return result

@@ -211,11 +211,11 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     s_of_t = T / S
     omega_s = [(uk * s_of_t + vk) / (1 + s_of_t**2) for uk, vk in zip(u_[:2], v_[:2])]
     c_sinh = certify_zero(log, "with $s = sinh t$: $(ds/dt) Omega(s) = u tanh t + v sech t$ for $Omega(s) = (u s + v)/(1 + s^2)$, "
-                          "so dgamma/ds = gamma x Omega(s)", "eq:whole",
+                          "so $deriv(gamma, s) = cross(gamma, Omega(s))$", "eq:whole",
                           [w / S - (uk * T + vk * S) for w, uk, vk in zip(omega_s, u_[:2], v_[:2])], TS)
     partial = [(uk * s + vk) / (1 + s**2) - ((uk - j * vk) / 2 / (s - j) + (uk + j * vk) / 2 / (s + j))
                for uk, vk in zip(u_[:2], v_[:2])]
-    c_partial = certify_zero(log, "$Omega(s) = ((u - i v)/2)/(s - i) + ((u + i v)/2)/(s + i)$: simple poles at s = +-i "
+    c_partial = certify_zero(log, "$Omega(s) = ((u - i v)/2)/(s - i) + ((u + i v)/2)/(s + i)$: simple poles at $s = pm(i)$ "
                              "with residues $(u - i v)/2$, $(u + i v)/2$", "eq:whole", partial, COMPLEX)
     zeta = sp.Symbol("zeta")
     at_infinity = [-(uk / zeta + vk) / (1 + 1 / zeta**2) / zeta**2 - (-(uk + vk * zeta) / (zeta * (1 + zeta**2)))
@@ -225,12 +225,12 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                               Domain("Q(u, v, zeta)"))
 
     # 2. the spinor lift
-    c_algebra = certify_zero(log, "[S(a), S(b)] = S(a x b) for $S(w) = -(i/2)(w1 sigma3 + w2 sigma1 + w3 sigma2)$: "
-                             "$so(3) = sl(2)$ as Lie algebras", "derived",
+    c_algebra = certify_zero(log, "$S(a) S(b) - S(b) S(a) = S(cross(a, b))$ for $S(w) = -(i/2)(w1 sigma3 + w2 sigma1 + w3 sigma2)$: "
+                             "the Lie algebras of $SO(3, C)$ and $SL(2, C)$ are isomorphic", "derived",
                              list(spinor(u_) * spinor(g_) - spinor(g_) * spinor(u_) - spinor(cross(u_, g_))),
                              Domain("Q(a, b)[i]/(i^2+1)", (I_EXT,)))
     c_lift = certify_zero(log, "spinor lift: $deriv(Psi, s) = -S(Omega) Psi$ gives the derivative of $Psi S(g0) Psi^-1$ as the commutator of "
-                          "$-S(Omega)$ and $S(g)$, which is $S(cross(g, Omega))$: the Poisson equations are the adjoint of a traceless 2x2 Fuchsian system",
+                          "$-S(Omega)$ and $S(g)$, which is $S(cross(g, Omega))$: the Poisson equations are the adjoint of a traceless Fuchsian system of 2 by 2 matrices",
                           "eq:whole", list(-spinor(u_) * spinor(g_) + spinor(g_) * spinor(u_) - spinor(cross(g_, u_))),
                           Domain("Q(a, b)[i]/(i^2+1)", (I_EXT,)))
     lam = sp.Symbol("lambda")
@@ -332,7 +332,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                     r"w_-^2=-\overline{\Lambda^2}=\frac{I_{11}I_{22}(I_{11}-I_{22})\big(I_{13}^2I_{22}-I_{11}I_{23}^2"
                     r"-2i\,r\,I_{13}I_{23}\big)}{D^2}"], c_inv, c_lambda, expr=invariants_expr(),
                    hypotheses=[*BODY_HYPOTHESES, r"$\Lambda$: the Kovalevskaya exponent of the body ($m_3=i\sqrt{I_{11}I_{22}}$)"])
-    result.formula("gauss_exponents", "derived", "Table of exponents (spinor lift; Gauss's F)",
+    result.formula("gauss_exponents", "derived", "Table of exponents (spinor lift; Gauss's $F$)",
                    [r"s=i\ \mapsto\ z=0:\quad \pm\tfrac{\kappa}2;\quad F:\ 0,\ 1-C=-\kappa",
                     r"s=-i\ \mapsto\ z=1:\quad \pm\tfrac{\mu}2;\quad F:\ 0,\ C-A-B=-\mu",
                     r"s=\infty\ \mapsto\ z=\infty:\quad \pm\tfrac{iU}2;\quad F:\ A,\ B\quad(A-B=1+iU)",

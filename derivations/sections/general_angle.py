@@ -1,6 +1,6 @@
-"""The scattering angle of every body in closed form (section 5.1 generalised; Theorem 5.2 as its I13 = 0 case).
+"""The scattering angle of every body in closed form (section 5.1 generalised; Theorem 5.4 as its I13 = 0 case).
 
-Paper: Theorem 5.2 (the angle for I13 = 0), the boundary condition ``ss`` and the Conclusion's open
+Paper: Theorem 5.4 (the angle for I13 = 0), the boundary condition ``ss`` and the Conclusion's open
 problem.  From :mod:`derivations.sections.gauss` the spinor lift of the Poisson equations in
 ``s = sinh t`` is a traceless 2x2 Fuchsian system with three singular points.  Method:
 
@@ -28,8 +28,8 @@ problem.  From :mod:`derivations.sections.gauss` the spinor lift of the Poisson 
    non-negative terms, exponentials of non-positive arguments only (no overflow, no cancellation);
    both certified against step 2, and their sum is 1.  ``U - X`` itself is computed without
    cancellation from ``(U^2 - X^2)(2U^2 - a + |w^2|) = 2 (u x v)_3^2`` (certified).
-4. **Theorem 5.2 (exact reduction).**  For I13 = 0: ``w_-^2 = -p^2`` (X = 0, |Y| = |p|) and
-   ``U = |p|/d``; the evaluation form at ``g = h = pi |p|/(2d)`` is the emitted Theorem 5.2 form, and
+4. **Theorem 5.4 (exact reduction).**  For I13 = 0: ``w_-^2 = -p^2`` (X = 0, |Y| = |p|) and
+   ``U = |p|/d``; the evaluation form at ``g = h = pi |p|/(2d)`` is the emitted Theorem 5.4 form, and
    ``a d = cos^2(pi p/2)/cosh^2(pi p/(2d))`` (certified).
 5. **Corroboration by two independent validated routes (balls, :mod:`general_angle_balls`).**
    On seeded bodies: the closed form against the ss enclosure (validated integration along the real
@@ -172,7 +172,7 @@ def _kummer_connection(log: CertificateLog, ad) -> Certificate:
     B = (kappa_ + mu_ - j * U_) / 2
     C = 1 + kappa_
     pairs = [(B, 1 - B), (C - A, A - C + 1), (A, 1 - A), (C - B, B - C + 1)]
-    c_pairs = certify_zero(log, "$rho = P12 P21/(P11 P22)$ is a ratio of eight values of the Gamma function whose arguments "
+    c_pairs = certify_zero(log, "$rho = P12 P21/(P11 P22)$ is a ratio of eight values of Euler's integral of the second kind whose arguments "
                            "pair as $x$ and $1 - x$ for $x = B$, $C - A$, $A$, $C - B$ (the reflection formula applies)", "derived",
                            [x + y - 1 for x, y in pairs], Domain("Q(kappa, mu, U)[i]/(i^2+1)", (I_EXT,)))
 
@@ -271,14 +271,15 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     m_v = 1 / Eh**2
     cosh_piU, sinh_piU = (Eh**2 + 1 / Eh**2) / 2, (Eh**2 - 1 / Eh**2) / 2
     real_form = (cosh_piU * tau_v * taup_v - (tau_v**2 + taup_v**2) / 2) / (2 * sinh_piU**2)
-    c_real = certify_zero(log, "$tau_p = conjugate(tau)$ ($mu = -conjugate(kappa)$), $m = e^(-pi U)$: $a d = (cosh(pi U) abs(tau)^2 - "
-                          "Re(tau^2))/(2 sinh(pi U)^2)$", "derived",
+    c_real = certify_zero(log, "$tau_p = conjugate(tau)$ ($mu = -conjugate(kappa)$), $m = e^(-pi U)$: $a d = (cosh(pi U) abs(tau)^2 - R)/(2 sinh(pi U)^2)$ "
+                          "with $R$ the real part of $tau^2$", "derived",
                           ad.subs({tau: tau_v, taup: taup_v, m: m_v}) - real_form, TRIG)
 
     # 3. the evaluation form
     sin2, cos2 = _stable_parts(Eh, Eg, sy, cy)
-    c_stable = certify_zero(log, "evaluation form: $c^2 S^2 + e^(-2 g) expm1(2 g-2 h)^2 q/E^2$ equals the real form of $cos(Deltapsi/2)^2$, "
-                            "$expm1(-2 g) expm1(2 g-4 h) q/E^2$ equals $1 - cos(Deltapsi/2)^2$ ($q = T^2 + s^2 S^2$, $E = expm1(-2 h)$)",
+    c_stable = certify_zero(log, "evaluation form: $c^2 S^2 + e^(-2 g) (e^(2 g-2 h) - 1)^2 q/(e^(-2 h) - 1)^2$ equals the real form of "
+                            "$cos(Deltapsi/2)^2$, $(e^(-2 g) - 1) (e^(2 g-4 h) - 1) q/(e^(-2 h) - 1)^2$ equals $1 - cos(Deltapsi/2)^2$ "
+                            "($q = T^2 + s^2 S^2$)",
                             "derived", [cos2 - real_form, sin2 + cos2 - 1], TRIG)
     Uq, aq, bq, mq = sp.symbols("U a_w b_w mod")
     X2 = (mq + aq) / 2
@@ -290,16 +291,16 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
                          Domain("Q(U, v1, v2)[mod]/(mod^2 - a^2 - b^2)",
                                 (Extension(mq, (aq**2 + bq**2).subs(frame), "|w_-^2|"),)))
 
-    # 4. Theorem 5.2 as the case I13 = 0
+    # 4. Theorem 5.4 as the case I13 = 0
     p_, d_ = sp.symbols("p d", positive=True)
     U2_zero = INVARIANTS["U2"].subs(I13, 0)
-    c_U = certify_zero(log, "$I13 = 0$: $U^2 = p^2/d^2$ with $p^2 = I22 (I11 - I22)/I23^2$, $d^2 = (I11 - I22)/I22$", "Theorem 5.2",
+    c_U = certify_zero(log, "$I13 = 0$: $U^2 = p^2/d^2$ with $p^2 = I22 (I11 - I22)/I23^2$, $d^2 = (I11 - I22)/I22$", "Theorem 5.4",
                        U2_zero - (I22 * (I11 - I22) / I23**2) / ((I11 - I22) / I22), Domain("Q(I11, I22, I23)"))
     T_, S_ = (Eh**2 - 1) / (Eh**2 + 1), 2 * Eh / (Eh**2 + 1)
     sin2_0, cos2_0 = _stable_parts(Eh, Eh, sy, cy)           # g = h: X = 0
-    c_reduction = certify_zero(log, "$I13 = 0$ ($X = 0$, $g = h = pi abs(p)/(2 d)$): the evaluation form is Theorem 5.2's, "
+    c_reduction = certify_zero(log, "$I13 = 0$ ($X = 0$, $g = h = pi abs(p)/(2 d)$): the evaluation form is that of Theorem 5.4, "
                                "$sin(Deltapsi/2)^2 = tanh(x)^2 + s^2 sech(x)^2$, $cos(Deltapsi/2)^2 = c^2 sech(x)^2$, and $a d = "
-                               "cos(pi p/2)^2/cosh(pi p/(2 d))^2$", "Theorem 5.2",
+                               "cos(pi p/2)^2/cosh(pi p/(2 d))^2$", "Theorem 5.4",
                                [sin2_0 - (T_**2 + sy**2 * S_**2), cos2_0 - cy**2 * S_**2,
                                 real_form.subs(Eg, Eh) - cy**2 / ((Eh + 1 / Eh) / 2) ** 2], TRIG)
 
@@ -312,29 +313,31 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
     for rows, digits, what, route in (
             (traces, tier.trace_digits, "relative distance of the traces of $M_0$, $M_i$, $M_(-i)$, $M_0 M_i$ and $M_0^-1 M_i$ "
              "(the monodromy about $x = 0$, $x = i$, $x = -i$) from the closed-form monodromy", "complex-path monodromy in $x = e^t$"),
-            (angles, tier.angle_digits, "distance of the closed-form angle from the ss enclosure", "ss enclosure"),
-            (deep, tier.deep_digits, "distance of the closed-form angle from the ss enclosure", "ss enclosure")):
+            (angles, tier.angle_digits, "distance of the closed-form angle from the enclosure of the scattering solution",
+             "enclosure of the scattering solution"),
+            (deep, tier.deep_digits, "distance of the closed-form angle from the enclosure of the scattering solution",
+             "enclosure of the scattering solution")):
         tolerance = 10.0 ** (10 - digits)
         worst = max(row["relative_float" if "relative_float" in row else "difference_float"] for row in rows)
         ok = all(row.get("relative_float", row.get("difference_float")) <= tolerance for row in rows)
         certs.append(log.record(Certificate(
             f"{len(rows)} seeded {'body' if len(rows) == 1 else 'bodies'} ($I13 I23$ non-zero, seed 37): {what} is at "
             f"most $1e-{digits - 10}$", "derived",
-            f"ball enclosure (python-flint acb/arb): {route}, {digits} digits, against the closed form in "
+            f"ball enclosure (`python-flint` `acb`/`arb`): {route}, {digits} digits, against the closed form in "
             "complex balls; a pass proves the stated bound", Outcome.PASS if ok else Outcome.FAIL,
             sum(row["seconds"] for row in rows), len(rows),
-            f"largest {worst:.2e}; bodies {', '.join('(' + ', '.join(r['body']) + ')' for r in rows[:3])}, ...; "
+            f"largest ${worst:.2e}$; bodies {', '.join('(' + ', '.join(r['body']) + ')' for r in rows[:3])}, ...; "
             + ("the full ball checks" if options.ball_checks == "full" else
                f"the first {len(rows)} of the {SEEDED} seeded bodies; all {SEEDED} in the full ball checks"))))
     c_traces, c_angles, c_deep = certs
 
-    result.formula("general_angle", "Theorem 5.2", "Scattering angle of every body",
+    result.formula("general_angle", "Theorem 5.4", "Scattering angle of every body",
                    r"\cos^2\frac{\Delta\psi}2=\frac{\cosh(\pi U)\,|\tau|^2-\operatorname{Re}\tau^2}{2\sinh^2(\pi U)},"
                    r"\quad \tau=2\cos(\pi\kappa),\ \kappa=\tfrac i2 w_-,\ w_-^2=(u-iv)\cdot(u-iv),\ U=|u|",
                    c_diag, *c_kummer, c_entry, c_real, c_traces, c_angles, c_deep, expr=angle_expr(),
                    hypotheses=[*BODY_HYPOTHESES, DELTA_PSI, OMEGA_HYPOTHESIS, r"$w_-$: either square root"])
     # the evaluation form: e^x - 1 as written (each one is evaluated as expm1, the argument as atan2: see the note)
-    result.formula("general_angle_stable", "Theorem 5.2", "Scattering angle of every body, evaluation form",
+    result.formula("general_angle_stable", "Theorem 5.4", "Scattering angle of every body, evaluation form",
                    r"\Delta\psi=2\arg\Big(\sqrt{c^2\operatorname{sech}^2h+\tfrac{e^{-2g}(e^{2g-2h}-1)^2}{(e^{-2h}-1)^2}q}"
                    r"+i\sqrt{\tfrac{(e^{-2g}-1)(e^{2g-4h}-1)}{(e^{-2h}-1)^2}q}\Big),\quad q=\tanh^2h+s^2\operatorname{sech}^2h,"
                    r"\quad h=\tfrac{\pi U}2,\ g=\tfrac{\pi(U-X)}2,\ s=|\sin\tfrac{\pi Y}2|,\ c=|\cos\tfrac{\pi Y}2|,"
@@ -342,10 +345,10 @@ def run(log: CertificateLog, options, gauss_result) -> DerivationResult:
                    hypotheses=[*BODY_HYPOTHESES, DELTA_PSI, OMEGA_HYPOTHESIS,
                                r"$w_-=X+iY$ the root with $X\ge0$ (then $0<g\le h$)"])
     result.notes.append(
-        "The evaluation form of the angle is computed (the emitted general_angle) with expm1 for every $exp(x) - 1$ "
-        "and with atan2 for the argument of the complex number: sums and products of non-negative terms, exponentials "
+        "The evaluation form of the angle is computed (the emitted `general_angle`) with `expm1` for every $exp(x) - 1$ "
+        "and with `atan2` for the argument of the complex number: sums and products of non-negative terms, exponentials "
         "of non-positive arguments only, so neither overflow nor cancellation.")
-    result.formula("general_angle_reduction", "Theorem 5.2", "Theorem 5.2 as the case $I_{13}=0$",
+    result.formula("general_angle_reduction", "Theorem 5.4", "Theorem 5.4 as the case $I_{13}=0$",
                    r"w_-^2=-p^2,\ U=\frac{|p|}d:\quad \cos^2\frac{\Delta\psi}2=\frac{\cos^2(\pi p/2)}{\cosh^2(\pi p/(2d))}",
                    c_U, c_reduction, expr=reduction_expr(),
                    hypotheses=[(r"$I_{13}=0$, with $p$, $d$ of section 4: $p^2=I_{22}(I_{11}-I_{22})/I_{23}^2$, "

@@ -1,6 +1,6 @@
 """The differential Galois group of the Poisson equations of every body, exactly (the Conclusion's open problem).
 
-Paper: the Conclusion (the monodromy group "in the general case" is left open), Theorem 3.1 and the
+Paper: the Conclusion (the monodromy group "in the general case" is left open), Theorem 3.2 and the
 odd-p case.  From :mod:`derivations.sections.gauss`: the spinor lift is gauge-equivalent over C(s),
 s = sinh t, to Gauss's equation with exponent differences ``kappa``, ``mu``, ``1 + iU``.  The theorem
 (proof in :mod:`suslov.kernel.kimura`, the run-time decision):
@@ -53,6 +53,11 @@ X, Y, kappa = sp.symbols("X Y kappa")
 REAL = Domain("Q(U, v1, v2, X, Y)[i]/(i^2+1)", (I_EXT,))
 
 
+def _group(verdict: str) -> str:
+    """A group verdict (``"SO(3,C)"``, ``"reducible"``, ``"unknown"``) as a statement's words and mathematics."""
+    return "$SO(3, C)$" if verdict == "SO(3,C)" else verdict
+
+
 def theorem_expr() -> sp.Tuple:
     """The theorem's relations: the condition I13 I23 (I11 - I22) = 0 (I13, I23 real, zero allowed: the project's
     symbols are non-zero), w_-^2 = -P^2 and Lambda = P with P odd, and the Gauss equation it applies Kimura's
@@ -82,7 +87,7 @@ def run(log: CertificateLog, options, gauss_result, fuchsian_result) -> Derivati
                           W_PLUS2 - W_MINUS2.subs(j, -j), REAL)
     k_, m_ = j / 2 * (X + j * Y), j / 2 * (X - j * Y)
     c_sum = certify_zero(log, "$w_m = X + i Y$: $kappa + mu = i X$ (imaginary), $kappa - mu = -Y$ (real), "
-                         "$Im(i X + 1 + i U) = X + U$, $Im(i X - 1 - i U) = X - U$, $Im(-Y + 1 + i U) = U$, non-zero", "derived",
+                         "the imaginary parts of $i X + 1 + i U$, $i X - 1 - i U$ and $-Y + 1 + i U$ are $X + U$, $X - U$ and $U$, non-zero", "derived",
                          [k_ + m_ - j * X, k_ - m_ + Y,
                           ((j * X + (1 + j * U)) - (j * X + (1 + j * U)).subs(j, -j)) / (2 * j) - (X + U)], REAL)
     c_half = certify_zero(log, "$kappa^2 = -w_m^2/4$: $kappa = 1/2 + l$ (half-odd) iff $w_m^2 = -(2 l + 1)^2$", "derived",
@@ -93,12 +98,12 @@ def run(log: CertificateLog, options, gauss_result, fuchsian_result) -> Derivati
     for row in rows:
         exact = galois_group(*row["body"])
         if row["verdict"] in ("SO(3,C)", "reducible") and row["verdict"] != exact.group:
-            disagreements.append(f"{row['body']}: balls {row['verdict']}, exact {exact.group}")
+            disagreements.append(f"({', '.join(row['body'])}): balls {_group(row['verdict'])}, exact {_group(exact.group)}")
     c_agree = log.record(Certificate(
         "the exact decision (Kimura) agrees with the ball verdicts of the complex-path monodromy on the representative "
         "bodies (odd, even and non-integer $p$, $I23 = 0$, general bodies)", "Conclusion",
         "comparison of the exact verdicts with the certified ball verdicts", Outcome.FAIL if disagreements else Outcome.PASS,
-        0.0, len(rows), "; ".join(disagreements) or ", ".join(f"({', '.join(r['body'])}): {r['verdict']}" for r in rows)))
+        0.0, len(rows), "; ".join(disagreements) or ", ".join(f"({', '.join(r['body'])}): {_group(r['verdict'])}" for r in rows)))
     keys = gauss_result.exports["certificates"]
     result.formula("general_galois", "Conclusion", "Galois group of every body (theorem)",
                    [r"\text{Liouvillian}\iff I_{13}I_{23}(I_{11}-I_{22})=0\ \text{and}\ w_-^2=-P^2,\ P\ \text{odd}"

@@ -109,8 +109,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     a1 = d * p * (2 * (d**2 + 1) * w1**2 - w2**2)
     a2 = (d**2 + 1) * w1 * ((d**2 + p**2) * w1**2 + p**2 * w2**2)
     a3 = -d * p * w2**2 * ((d**2 + 1) * w1**2 + w2**2)
-    c_prep = certify_zero(log, "$gamma1$ solves a0 g1''' + a1 g1'' + a2 g1' + a3 g1 = 0 on every solution of eq:sysfin + "
-                          "Poisson (printed a'ss)", "eq:genhipprep",
+    c_prep = certify_zero(log, "$gamma1$ solves $a0 deriv(g1, t, 3) + a1 deriv(g1, t, 2) + a2 deriv(g1, t) + a3 g1 = 0$ "
+                          "on every solution of eq:sysfin + Poisson (printed a'ss)", "eq:genhipprep",
                           a0 * jets[3] + a1 * jets[2] + a2 * jets[1] + a3 * jets[0], PQ)
     result.formula("genhipprep", "eq:genhipprep, a'ss", "Third-order equation for $\\gamma_1$",
                    [r"a_0\dddot\gamma_1+a_1\ddot\gamma_1+a_2\dot\gamma_1+a_3\gamma_1=0,\quad "
@@ -137,7 +137,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     printed_zdot = [-2 * d * zz * solution[w1] / p,
                     2 * zz * (2 * p**2 + 2 * d**2 * p**2 - 3 * (1 + d**2) * p**2 * zz) / ((d**2 + 1) * p**2),
                     -8 * d * zz * (p**2 + d**2 * p**2 - 3 * (d**2 + 1) * p**2 * zz) * solution[w1] / ((d**2 + 1) * p**3)]
-    c_zdots = certify_zero(log, "printed z', z'', z''' along $omega(t)$", "t->z",
+    c_zdots = certify_zero(log, "printed $deriv(z, t)$, $deriv(z, t, 2)$, $deriv(z, t, 3)$ along $omega(t)$", "t->z",
                            [zt[k + 1] - printed_zdot[k] for k in range(3)], PD_RING.domain)
     # gamma1(t) = F(z(t)): derivatives in terms of F0..F3 = F, F', F'', F'''
     g_t = [F0, zt[1] * F1_, zt[2] * F1_ + zt[1] ** 2 * F2_, zt[3] * F1_ + 3 * zt[1] * zt[2] * F2_ + zt[1] ** 3 * F3_]
@@ -149,7 +149,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
         2: (-p**2 * (z - 1) + d**2 * (1 + z * (-6 - p**2 * (z - 1) + 4 * z))) / (4 * d**2 * (z - 1) ** 2 * z**2),
         3: (d**2 + 1) * p**2 / (8 * d**2 * (z - 1) ** 2 * z**2),
     }
-    c_b = certify_zero(log, "in $z = sech(t)^2$ the equation is g''' + b1 g'' + b2 g' + b3 g = 0 with the printed $b1, b2, b3$",
+    c_b = certify_zero(log, "in $z = sech(t)^2$ the equation is $deriv(g, z, 3) + b1 deriv(g, z, 2) + b2 deriv(g, z) + b3 g = 0$ "
+                       "with the printed $b1$, $b2$, $b3$",
                        "eq:gamma_1", [coeff[3 - k] / coeff[3] - b_printed[k].subs(z, S**2) for k in (1, 2, 3)],
                        PD_RING.domain)
     result.formula("gamma_1", "eq:gamma_1, t->z", "Equation in $z=4/(e^t+e^{-t})^2=\\operatorname{sech}^2t$",
@@ -182,7 +183,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
 
     # 4. identification with 3F2
     canon = canonical_3f2(*PARAM)
-    c_param = certify_zero(log, "eq:genhip is the 3F2 equation eq:3F2 with the parameters eq:param", "eq:param",
+    c_param = certify_zero(log, "eq:genhip is the generalised hypergeometric equation eq:3F2 with the parameters eq:param", "eq:param",
                            [canon[k] - m[k] for k in range(4)], QZ)
     result.formula("param", "eq:3F2, eq:param", "Parameters of the $_3F_2$",
                    r"\alpha=\Big(\tfrac12,\tfrac{1+p}{2},\tfrac{1-p}{2}\Big),\quad\beta=\Big(\frac{d-ip}{2d},\frac{d+ip}{2d}\Big)",
@@ -192,16 +193,18 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                                             for k, value in enumerate(values, 1)]),
                    hypotheses=HYPOTHESES)
     for item in (paper.GAMMA_1, paper.GENHIP, paper.PARAM):
-        result.errata.append(erratum(item, "confirmed", item.latex, "certified exactly (symbolic $p$, d)",
+        result.errata.append(erratum(item, "confirmed", item.latex, "certified exactly (symbolic $p$, $d$)",
                                      {"eq:gamma_1": c_b, "eq:genhip": c_genhip, "eq:param": c_param}[item.label]))
 
     # Pochhammer: the series solves eq:3F2 only with (a)_k = a...(a+k-1) (checked at p = 3)
     good = series_3f2(*PARAM, 3)
     bad = series_3f2(*PARAM, 3, printed=True)
     m3 = [v.subs(p, 3) for v in m]
-    c_poch = certify_zero(log, "$p = 3$: 3F2 series with (a)_k = a(a+1)...(a+k-1) solves eq:genhip", "eq:ghyp",
+    c_poch = certify_zero(log, "$p = 3$: the generalised hypergeometric series with the Pochhammer symbol "
+                          "$RisingFactorial(a, k)$ of $k$ factors $a$, ..., $a + k - 1$ solves eq:genhip", "eq:ghyp",
                           apply_z_operator(m3, good), QZ)
-    c_poch_bad = certify_zero(log, "$p = 3$: 3F2 series with the printed (a)_k = a(a+1)...(a+k) solves eq:genhip",
+    c_poch_bad = certify_zero(log, "$p = 3$: the generalised hypergeometric series with the printed Pochhammer symbol of $k + 1$ "
+                              "factors $a$, ..., $a + k$ solves eq:genhip",
                               "eq:ghyp", apply_z_operator(m3, bad), QZ, expect=Outcome.FAIL)
     result.errata.append(erratum(paper.POCHHAMMER, "corrected", r"(a)_k=a(a+1)\cdots(a+k-1),\ (a)_0=1",
                                  "the printed definition has one factor too many", c_poch, c_poch_bad))

@@ -1,4 +1,4 @@
-"""Necessary conditions of Theorem 3.1: the Kovalevskaya-Lyapunov analysis (paper section 3.1).
+"""Necessary conditions of Theorem 3.2: the Kovalevskaya-Lyapunov analysis (paper section 3.1).
 
 Labels: ``eq:d``, the characteristic polynomial of K, ``eq:neccg1``,
 ``eq:neccg12``, ``eq:necc1``, ``eq:necc11``, ``eq:neccg2``, ``eq:necc2``,
@@ -126,7 +126,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                    hypotheses=[FRAME, POSITIVE, NONZERO_D, BRANCH])
     result.errata.append(erratum(paper.EQ_D, "corrected",
                                  r"\bar\omega=-I_{11}I_{22}\times\text{printed}",
-                                 "the printed point belongs to the printed gen12 (time scale -I11 I22)",
+                                 "the printed point belongs to the printed gen12 (time scale $-I11 I22$)",
                                  c_point_pr, c_point_true, c_point_scale))
 
     K = kovalevskaya_matrix(field, point)
@@ -137,7 +137,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
         charpoly = sp.expand((K - lam * sp.eye(5)).det(method="berkowitz"))
     target = -(lam + 1) * (lam - 2) * (lam - 1) * ((lam - 1) ** 2 - Lam2)
     c_char = certify_zero(log, "$det(K - lam) = -(lam+1)(lam-2)(lam-1)((lam-1)^2 - Lambda^2)$: exponents "
-                          "$-1$, $2$, $1$, 1 +- Lambda", "Kovalevskaya matrix", charpoly - target, DOMAIN)
+                          "$-1$, $2$, $1$, $1 + Lambda$, $1 - Lambda$", "Kovalevskaya matrix", charpoly - target, DOMAIN)
     c_char.seconds += elapsed[0]
     c_lam = certify_zero(log, "$Lambda^2 = -(w1^2 + w2^2)$ at the Darboux point (closed form)", "Kovalevskaya matrix",
                          -(point[w1] ** 2 + point[w2] ** 2) - Lam2, DOMAIN)
@@ -187,7 +187,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
         paper.NECCG12, "corrected",
         r"\frac{I_{11}I_{22}(I_{11}-I_{22})(I_{11}I_{23}^2-I_{22}I_{13}^2)}{(I_{11}I_{22}I_{33}-1)^2}=p^2",
         "factor $(I11 I22)^2$ (the printed gen12 time scale); for $I13 = 0$ this agrees with the parameter "
-        "derived from the general solution (special_case), so eq:necc1 is corrected the same way",
+        "derived from the general solution (`special_case`), so eq:necc1 is corrected the same way",
         c_g12, c_g12_scale, c_n1))
     result.errata.append(erratum(
         paper.NECC11, "corrected", r"I_{23}=0,\ \frac{I_{11}(I_{11}-I_{22})}{I_{13}^2}=-p^2"
@@ -211,8 +211,9 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     outcome = Outcome.PASS if witness is not None and lam_same == 0 else Outcome.FAIL
     c_ss = log.record(Certificate(
         "$I11 = I22$: $Lambda = 0$, eigenvalue 1 has multiplicity 3 and $rank(K - Id) >= 3$: $K$ is not semi-simple",
-        "section 3.1", "non-zero 3x3 minor in Q(I11,I13,I23)[i] (exact)", outcome, elapsed[0], 1,
-        f"minor rows {witness[0]} cols {witness[1]} is non-zero" if witness else "no non-zero minor found"))
+        "section 3.1", "a non-zero minor of order 3 in $Q(I11, I13, I23)[i]$ (exact)", outcome, elapsed[0], 1,
+        ("the minor of rows " + ", ".join(str(k + 1) for k in witness[0]) + " and columns "
+         + ", ".join(str(k + 1) for k in witness[1]) + " is non-zero") if witness else "no non-zero minor found"))
     # the certificate shows rank >= 3 (a non-zero 3x3 minor), which with the multiplicity 3 of the
     # eigenvalue 1 is what non-semi-simplicity needs (the rank is 4)
     result.formula("semisimple", "section 3.1", "The case $I_{11}=I_{22}$",
@@ -235,7 +236,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
     result.errata.append(erratum(paper.LINA, "confirmed", paper.LINA.latex,
                                  "exact identity of vector fields; $p^2$ changes sign as eq:necc1 / eq:necc11 say",
                                  c_lina, c_lina_p))
-    # the two cases of Theorem 3.1 as emitted by meromorphy(): Lambda^2 restricted (real there)
+    # the two cases of Theorem 3.2 as emitted by meromorphy(): Lambda^2 restricted (real there)
     restricted = {name: flint_factor.factor(sp.cancel(real.subs(zero, 0))) for name, zero in (("i13", I13), ("i23", I23))}
     c_real_cases = certify_zero(log, "$Lambda^2$ is real on $I13 = 0$ and on $I23 = 0$ (its imaginary part vanishes "
                                 "identically there), so $p^2 = Re(Lambda^2)$ restricted", "eq:neccg1",

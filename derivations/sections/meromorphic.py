@@ -125,8 +125,8 @@ def conservation_certificate(log: CertificateLog) -> Certificate:
     dd = sp.Symbol("d", positive=True)
     A = sp.Matrix([[0, 0, a * S], [0, 0, w1], [-a * (dd**2 + 1) * S, -w1, 0]])
     G = sp.diag(dd**2 + 1, 1, 1)
-    return certify_zero(log, "the c-free Poisson matrix $A(t)$ ($deriv(g1, t) = a S g3$, $deriv(g2, t) = w1 g3$, $deriv(g3, t) = -a (d^2+1) S g1 - w1 g2$) "
-                        "is real and skew for $M = diag(d^2+1, 1, 1)$: $A^T M + M A = 0$, so M-products of two "
+    return certify_zero(log, "the $c$-free Poisson matrix $A(t)$ ($deriv(g1, t) = a S g3$, $deriv(g2, t) = w1 g3$, $deriv(g3, t) = -a (d^2+1) S g1 - w1 g2$) "
+                        "is real and skew for $M = diag(d^2+1, 1, 1)$: $A^T M + M A = 0$, so $M$-products of two "
                         "solutions are constant in $t$", "eq:ps", list(A.T * G + G * A), Domain("Q(a,d,S,w1)"))
 
 
@@ -151,7 +151,7 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
         ok_div = real.divisions_exact and cplx.divisions_exact
     certs.append(log.record(Certificate(
         f"$p = {p}$: the components from eq:gam3 are polynomials over $(1+x^2)^p$: exact division by $x$ and $x^2-1$ "
-        "(no removable singularity at t = 0)", "eq:gam3", Statement("exact division in ", ring(DOMAIN)),
+        "(no removable singularity at $t = 0$)", "eq:gam3", Statement("exact division in ", ring(DOMAIN)),
         Outcome.PASS if ok_div else Outcome.FAIL, elapsed[0], sum(len(m) for m in real.M + cplx.M))))
     with stopwatch() as elapsed:
         third = third_order_residual(cplx.M[0], p, 1)
@@ -194,7 +194,7 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
                   and (metric_dot(V0, Vbar0) - unit_target).is_zero())
             size = 2
     method = (Statement("exact zero test in ", ring(DOMAIN)) if direct else
-              "conservation: the certified Poisson solutions (this p) have constant G-products (G-skew system, "
+              "conservation: the certified Poisson solutions (this $p$) have constant $G$-products ($G$-skew system, "
               "certified once); rate-0 constants from exact values at $x = 0$, products carrying $e^(i k a t)$ with $k$ "
               "non-zero are zero (a non-zero constant would make $e^(i k a t)$ converge as $t$ tends to $-oo$)")
     certs.append(log.record(Certificate(
@@ -212,7 +212,7 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
               and lim_plus[2].is_zero() and at_x(cplx.M[0], 0).is_zero())
     certs.append(log.record(Certificate(
         f"$p = {p}$: $gammaI$ tends to $(-1,0,0)$ as $t$ tends to $-oo$ and to $(1,0,0)$ as $t$ tends to $oo$; $V/k$ tends to "
-        f"$(0, 1, {'' if sigma > 0 else '-'}i)$ as $t$ tends to $-oo$ (asymp)", "asymp", Statement("exact evaluation in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL,
+        f"$(0, 1, {'' if sigma > 0 else '-'}i)$ as $t$ tends to $-oo$", "asymp", Statement("exact evaluation in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL,
         elapsed[0], 0)))
     return Basis(p, real, cplx, k, scale_real, sigma, certs)
 
@@ -243,7 +243,7 @@ def genhip_check(log: CertificateLog, p: int) -> Certificate:
                + (2 * (ZD**2 + p * p) + 2 * ZD**2 * (p * p - 13) * ZV) * d1 + ZD**2 * (p * p - 1) * u)
     return log.record(Certificate(
         f"$p = {p}$: the terminating series $F1(z)$ (pol_sol, derived coefficients) solves eq:genhip",
-        "pol_sol", "exact zero test in $Z[z,d]$ (python-flint, times $8 d^2 Den$)",
+        "pol_sol", "exact zero test in $Z[z,d]$ (`python-flint`; times $8 d^2$ and the coefficients' common denominator)",
         Outcome.PASS if lhs.is_zero() else Outcome.FAIL, elapsed[0], len(u)))
 
 

@@ -262,7 +262,7 @@ def compare_poly_f2(log: CertificateLog, result: DerivationResult, options) -> N
             printed.append(f_k * (2 * ds * k + ds + p * sp.I) * (4 * ds * k - ds * p + sp.I * p)
                            / (ds * p - 2 * ds * k - sp.I * p))
         good.append(certify_zero(log, f"$p = {p}$: $Fhat_k = -p (d-i)((2k+1)d+i p)/((p-2k)d-i p) F_k$ (from the definition "
-                                 "of Fhat)", "poly_F2", [u - v for u, v in zip(derived, corrected)], Domain("Q(d)(i)")))
+                                 "of $Fhat$)", "poly_F2", [u - v for u, v in zip(derived, corrected)], Domain("Q(d)(i)")))
         bad.append(certify_zero(log, f"$p = {p}$: the printed poly_F2 coefficients equal $Fhat_k$", "poly_F2",
                                 [u - v for u, v in zip(derived, printed)], Domain("Q(d)(i)"), expect=Outcome.FAIL))
     if good:
@@ -270,5 +270,5 @@ def compare_poly_f2(log: CertificateLog, result: DerivationResult, options) -> N
             paper.POLY_F2, "corrected",
             r"\hat F=\sum_k\frac{(a_+)_k(b_+)_k}{(c_+)_kk!}\,\frac{-p(d-i)((2k+1)d+ip)}{(p-2k)d-ip}\,(-y)^k"
             r"\ (\text{conjugate for }a_-,c_-)",
-            "the factor $(4 d k - d p + i p)$ should be $-p(d - i)$ (they agree only at k = 0); derived from "
-            "Fhat = [d(p-1)y - d - ip]F - 2d y(y+1)F'", *good, *bad))
+            "the factor $(4 d k - d p + i p)$ should be $-p(d - i)$ (they agree only at $k = 0$); derived from "
+            "$Fhat = (d (p-1) y - d - i p) F - 2 d y (y+1) deriv(F, y)$", *good, *bad))

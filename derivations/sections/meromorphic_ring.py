@@ -21,7 +21,7 @@ RING = BASIS_RING
 X, D, I = CTX.gens()
 ONE = CTX.constant(1)
 I2 = I**2 + 1
-DOMAIN = "Q[x,d,i]/(i^2+1) (python-flint fmpq_mpoly; numerators over $(1+x^2)^p$)"
+DOMAIN = "Q[x,d,i]/(i^2+1) (`python-flint` `fmpq_mpoly`; numerators over $(1+x^2)^p$)"
 ZCTX = flint.fmpq_mpoly_ctx.get(("z", "d"), "lex")
 ZV, ZD = ZCTX.gens()
 

@@ -146,7 +146,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
     inertia = inertia_tensor()
 
     # 1. normalisation det I = 1
-    c_det = certify_zero(log, "det I = 1 fixes $I33 = (1 + I11 I23^2 + I22 I13^2)/(I11 I22)$", "section 2",
+    c_det = certify_zero(log, "$det(I) = 1$ fixes $I33 = (1 + I11 I23^2 + I22 I13^2)/(I11 I22)$", "section 2",
                          inertia_tensor(I33_FROM_DET).det() - 1, RATIONAL)
     result.formula("i33", "section 2", "Normalisation $\\det\\mathbb I=1$",
                    sp.Eq(I33, I33_FROM_DET), c_det, hypotheses=[FRAME, r"$\det\mathbb I=1$", POSITIVE])
@@ -190,8 +190,8 @@ def run(log: CertificateLog, options) -> DerivationResult:
                    hypotheses=[FRAME, CONSTRAINT, POSITIVE])
     result.notes.append(
         "Entries of the inertia tensor that appear in the reduced Euler equations: "
-        + ", ".join(entries) + " (entries of $I$ itself, not of its inverse; $I33$ does not appear, "
-        "it only enters through det I = 1).")
+        + ", ".join(f"${name}$" for name in entries) + " (entries of $I$ itself, not of its inverse; $I33$ does "
+        "not appear, it only enters through $det(I) = 1$).")
     result.errata.append(erratum(
         paper.GEN12, "corrected",
         r"\dot\omega_1=" + latex(field[w1]) + r",\ \dot\omega_2=" + latex(field[w2]),
@@ -233,7 +233,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
     D = I13**2 * I22 + I23**2 * I11
     coeff = {name: flint_factor.factor(sp.Poly(solution[x], T, S).coeff_monomial(m))
              for name, x, m in (("a", w1, T), ("c1/2", w1, S), ("b", w2, T), ("c2/2", w2, S))}
-    c_line = certify_zero(log, "$omega(t)$ tends to the equilibrium line $I13 w1 + I23 w2 = 0$ as t -> +-oo",
+    c_line = certify_zero(log, "$omega(t)$ tends to the equilibrium line $I13 w1 + I23 w2 = 0$ as $to(t, pm(oo))$",
                           "eq:o12", [(I13 * solution[w1] + I23 * solution[w2]).subs({S: 0, T: s}) for s in (1, -1)],
                           WITH_R)
     result.formula("o12", "eq:o12, c's", "General solution (rate $A=1$), $r=\\pm\\sqrt{I_{11}I_{22}}$",
@@ -246,7 +246,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
     printed = paper.printed_o12(1, 1)
     c_pr_pr = certify_zero(log, "printed eq:o12/c's (signs coupled) solve the printed gen12", "c's",
                            ode_residuals(RING, printed, paper.GEN12_FIELD), RING.domain)
-    c_pr_mixed = certify_zero(log, "printed eq:o12/c's with opposite signs in $c1, c2$ solve the printed gen12",
+    c_pr_mixed = certify_zero(log, "printed eq:o12/c's with opposite signs in $c1$ and $c2$ solve the printed gen12",
                               "c's", ode_residuals(RING, paper.printed_o12(1, -1), paper.GEN12_FIELD),
                               RING.domain, expect=Outcome.FAIL)
     c_pr_true = certify_zero(log, "printed eq:o12/c's solve the derived Euler equations", "c's",
@@ -258,7 +258,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
         paper.C_S, "corrected",
         r"a=-\frac{I_{11}I_{22}I_{23}}{D},\ b=\frac{I_{11}I_{22}I_{13}}{D},\ "
         r"\tfrac{c_1}{2}=\frac{I_{22}I_{13}r}{D},\ \tfrac{c_2}{2}=\frac{I_{11}I_{23}r}{D},\ r=\pm\sqrt{I_{11}I_{22}}",
-        "the printed coefficients solve the printed gen12 (the two +- are coupled: opposite signs fail) "
+        "the printed coefficients solve the printed gen12 (the signs of $c1$ and $c2$ are coupled: opposite signs fail) "
         "but not the derived equations; derived equals $-I11 I22$ times printed (with the opposite branch of the sign)",
         c_pr_pr, c_pr_mixed, c_pr_true, c_scale))
 
@@ -290,7 +290,7 @@ def run(log: CertificateLog, options) -> DerivationResult:
                    hypotheses=[FRAME, POSITIVE, NONZERO_D, r"$\omega(t)$ the general solution above, either branch of $r$"])
     result.errata.append(erratum(
         paper.ENLEV, "corrected", r"F_1=\frac{(I_{11}I_{22})^2}{I_{13}^2I_{22}+I_{23}^2I_{11}}",
-        "1/D is the energy of the printed solution of the printed gen12; on the solution of the derived "
+        "$1/D$ is the energy of the printed solution of the printed gen12; on the solution of the derived "
         "equations the factor $(I11 I22)^2$ comes from the time scale of gen12", c_en_pr, c_en_true, c_en))
 
     emit = [Emitted("omega_general", (t, I11, I22, I13, I23, r), ((T, sp.tanh(t)), (S, sp.sech(t))),

@@ -108,13 +108,13 @@ def proof_errata(log: CertificateLog, result) -> None:
         label, (I11 * I22 * I33 - 1 - I11 * I23**2).subs(I33, (1 / I11 + I23**2) / I22), FIELD_DOMAIN)
     corrected_root = I22 * DELTA / p**2
     c_not_corrected = certify_zero(
-        log, "the corrected eq:necc1's root $I23^2 = I22 (I11-I22)/p^2$ solves the proof's quadratic", label,
+        log, "the root $I23^2 = I22 (I11-I22)/p^2$ of the corrected eq:necc1 solves the proof's quadratic", label,
         DELTA * (I22 * I33 - corrected_root) ** 2 - p**2 * I22 * corrected_root, FIELD_DOMAIN, expect=Outcome.FAIL)
     second_printed = I22 / (2 * DELTA) * (-p**2 + p * PRINTED_ROOT)
     second_fixed = I22 / (2 * DELTA) * (-p**2 + p * ROOT)
     minus_root = printed_roots(-1)
     c_second = certify_zero(
-        log, "second display as printed (2 I33 under the root) equals $I22 I33 - I23^2$ for the root with sign -",
+        log, "second display as printed ($2 I33$ under the root) equals $I22 I33 - I23^2$ for the root with sign -",
         label, (I22 * I33 - minus_root) - second_printed, BOTH_ROOTS_DOMAIN, expect=Outcome.FAIL)
     c_second_fixed = certify_zero(
         log, "second display with $4 I33$ under the root equals $I22 I33 - I23^2$ for the root with sign -", label,
@@ -124,9 +124,9 @@ def proof_errata(log: CertificateLog, result) -> None:
         (I22 * I33 - corrected_root) - I22 * (p**2 * I33 - DELTA) / p**2, FIELD_DOMAIN)
     result.errata.append(erratum(
         PROP41, "corrected", DERIVED_LATEX,
-        "the proof's quadratic in $I23^2$ is the uncorrected eq:necc1 (det I = 1); under the corrected condition it "
+        "the proof's quadratic in $I23^2$ is the uncorrected eq:necc1 ($det(I) = 1$); under the corrected condition it "
         "is linear with one positive root, and $I22 I33 - I23^2 > 0$ iff $p^2 I33 > I11 - I22$ (true for $p >= 1$ under "
-        "the proof's I33 + I22 > I11). The second display has $2 I33$ under the root where the first gives $4 I33$. "
+        "the proof's $I33 + I22 > I11$). The second display has $2 I33$ under the root where the first gives $4 I33$. "
         "The proposition holds: certified example bodies for every $p$ in the monodromy section",
         c_quadratic, c_printed_det1, c_not_corrected, c_second, c_second_fixed, c_linear))
     result.errata.append(triangle_errata(log, ROOT, QUADRATIC_DOMAIN, FIELD_DOMAIN, minus_root))

@@ -1,7 +1,7 @@
 """High-precision integration of the Poisson equations from t = -oo to t = +oo (mpmath).
 
 An independent numerical route for the scattering angle (paper section 5.1,
-Theorem 5.2, boundary condition ``ss``) that uses neither the 3F2 lemma
+Theorem 5.4, boundary condition ``ss``) that uses neither the 3F2 lemma
 ``gam_0`` nor the monodromy proposition: only ``eq:whole`` with
 ``omega = u tanh t + v sech t`` (``omegas``, ``eq:o12``).
 

@@ -1,7 +1,7 @@
-"""Meromorphy and logarithms at the poles of omega, for every p and every body (Theorem 3.1, Conjecture 5.2).
+"""Meromorphy and logarithms at the poles of omega, for every p and every body (Theorem 3.2, Conjecture 1).
 
-Paper: Theorem 3.1 (``eq:necc1``: all solutions meromorphic needs I13 = 0 and p^2 = I22 (I11 - I22)/I23^2
-with p an odd integer), section 3.2 (logarithms at t0 = i pi/2), Conjecture 5.2 (the points s1, s2 of
+Paper: Theorem 3.2 (``eq:necc1``: all solutions meromorphic needs I13 = 0 and p^2 = I22 (I11 - I22)/I23^2
+with p an odd integer), section 3.2 (logarithms at t0 = i pi/2), Conjecture 1 (the points s1, s2 of
 the section-5.2 equation logarithmic for even p, s3, s4 never), checked there for p <= 10.  The build's
 per-p routes decide these one p at a time (``residue``: Frobenius recursion of the Poisson system at t0;
 ``galois``: obstructions at s1..s4).  From Gauss's form (:mod:`derivations.sections.gauss`) they follow for
@@ -15,9 +15,9 @@ Kovalevskaya exponent of eq:kowal; for I13 = 0, Lambda = p).
 * otherwise (Lambda not an integer) some solution branches at t0 (multiplied by e^(2 pi i Lambda) != 1 on a
   loop about it).
 
-Lambda is an integer only if u.v = 0, i.e. I13 I23 (I11 - I22) = 0.  For I13 = 0: odd p is Theorem 3.1 with its
+Lambda is an integer only if u.v = 0, i.e. I13 I23 (I11 - I22) = 0.  For I13 = 0: odd p is Theorem 3.2 with its
 converse, for every odd p; even p refutes its meromorphy claim at every pole for every d > 0, and proves
-Conjecture 5.2 at s1, s2 for every even p (the per-p obstruction says "all but finitely many d").
+Conjecture 1 at s1, s2 for every even p (the per-p obstruction says "all but finitely many d").
 
 **Proof** (each step an exact certificate below, or a classical theorem named in its method):
 
@@ -86,7 +86,7 @@ from derivations.sections.gauss import (
 from suslov.kernel.local_behaviour import local_behaviour
 
 NAME = "pole_theorem"
-TITLE = "Meromorphy and logarithms at the poles for every p and every body"
+TITLE = "Meromorphy and logarithms at the poles for every $p$ and every body"
 REQUIRES = ("gauss", "residue", "galois", "fuchsian")
 
 E, lam = sp.symbols("q l")                       # q = e^eps (eps: the offset from the pole), l: an eigenvalue
@@ -149,7 +149,7 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
 
     # 1. the poles: s -+ i has a double zero in e; consecutive poles alternate between s = i and s = -i
     c_pole = certify_zero(log, "$sinh(i pi/2 + eps) - i = i (q - 1)^2/(2 q)$ and $sinh(-i pi/2 + eps) + i = -i (q - 1)^2/(2 q)$ "
-                          "($q = e^(eps)$): one loop about a pole $t0$ of omega is two loops about $s = i$ or $s = -i$; "
+                          "($q = e^(eps)$): one loop about a pole $t0$ of $omega$ is two loops about $s = i$ or $s = -i$; "
                           "$sinh(t + i pi) = -sinh(t)$", "eq:whole",
                           [sinh_at[1] - j - j * (E - 1) ** 2 / (2 * E), sinh_at[-1] + j + j * (E - 1) ** 2 / (2 * E),
                            (-E + 1 / E) / 2 + sinh_e], EXP)
@@ -164,8 +164,8 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
 
     # 4. odd Lambda: a traceless M with det 1 squares to -I (Cayley-Hamilton)
     M = sp.Matrix([[a_, b_], [(-a_**2 - 1) / b_, -a_]])
-    c_square = certify_zero(log, "$M$ with $tr(M) = 0$ and $det(M) = 1$ has $M^2 = -I$: for odd Lambda ($kappa$ half-odd, "
-                            "$tr(M) = 2 cos(pi kappa) = 0$) the loop about $t0$ acts by $Ad(M^2) = 1$", "Theorem 3.1",
+    c_square = certify_zero(log, "$M$ with $tr(M) = 0$ and $det(M) = 1$ has $M^2 = -I$: for odd $Lambda$ ($kappa$ half-odd, "
+                            "$tr(M) = 2 cos(pi kappa) = 0$) the loop about $t0$ acts by $Ad(M^2) = 1$", "Theorem 3.2",
                             list(M * M + sp.eye(2)) + [M.det() - 1], PLAIN)
 
     # 6. even Lambda: Gauss's parameters are not real; a non-trivial unipotent M^2 acts non-trivially
@@ -179,7 +179,7 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
     c_params = certify_zero(log, "$inner(u, v) = 0$, $w_m = i Lambda$: $A = 1 + i U/2$, $B = -i U/2$, and $A$, $B$, $C - A$, $C - B$ "
                             "have imaginary parts $U/2$ or $-U/2$ for either branch $2 kappa = pm Lambda$: none is an integer "
                             "($U > 0$), so Gauss's equation has a logarithm at $z = 0$ when $C = 1 + kappa$ is an integer",
-                            "Conjecture 5.2", certs_gauss[0] + certs_gauss[1], GAUSS_REAL)
+                            "Conjecture 1", certs_gauss[0] + certs_gauss[1], GAUSS_REAL)
     unipotent = sp.Matrix([[1, 2 * n_], [0, 1]])       # M^2 = (+-(I + N))^2 = I + 2N, N = [[0, n], [0, 0]]
     gamma_s = spinor(g_)
     moved = unipotent * gamma_s * unipotent.inv() - gamma_s
@@ -188,13 +188,13 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
     c_unipotent = certify_zero(log, "$M^2 = I + 2 N$, $N^2 = 0$, $N_12 = n$: $Ad(M^2) S(g) - S(g) = n S(2 (g2 + i g3), -2 h, -2 i h)$, "
                                "$h = g1 + n (g2 + i g3)$: non-zero for $n != 0$ and every real $g != 0$, a logarithm in the "
                                "Poisson solutions",
-                               "Conjecture 5.2", list(moved - expected), Domain("Q(n, g)[i]/(i^2+1)", (I_EXT,)))
+                               "Conjecture 1", list(moved - expected), Domain("Q(n, g)[i]/(i^2+1)", (I_EXT,)))
 
     # 7. the paper's s3, s4 are ordinary points of the system
     x34 = -j * (c_ - d_)
     s34 = (x34 - 1 / x34) / 2
     c_s34 = certify_zero(log, "at $x = -i (c - d)$ (and $x = -i (c + d)$): $s = sinh(t) = -i c$ and $1 + s^2 = -d^2 != 0$: the "
-                         "paper's $s3$, $s4$ are ordinary points of the Poisson system", "Conjecture 5.2",
+                         "paper's $s3$, $s4$ are ordinary points of the Poisson system", "Conjecture 1",
                          [s34 + j * c_, 1 + s34**2 + d_**2, (-j * (c_ + d_) - 1 / (-j * (c_ + d_))) / 2 + j * c_], S34)
 
     # cross-checks: the per-p routes and the balls against the theorem (comparisons, not part of the proof)
@@ -202,49 +202,50 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
     for row in residue_result.exports["log_rows"]:
         predicted = "no logarithms" if row["p"] % 2 else "logarithms"
         if (row["verdict"] == "no logarithms") != (predicted == "no logarithms"):
-            mismatches.append(f"p = {row['p']}: {row['verdict']}")
+            mismatches.append(f"$p = {row['p']}$: {row['verdict']}")
     residue_ps = [row["p"] for row in residue_result.exports["log_rows"]]
     c_residue_agree = log.record(Certificate(
         f"the theorem agrees with the exact Frobenius recursion at $t0 = i pi/2$ for every $p <= {max(residue_ps)}$ "
-        "($I13 = 0$, $Lambda = p$: no logarithms exactly for odd $p$)", "Theorem 3.1",
-        "comparison of the per-p verdicts (residue) with the theorem's", Outcome.FAIL if mismatches else Outcome.PASS,
-        0.0, len(residue_ps), "; ".join(mismatches) or f"{len(residue_ps)} values of p agree"))
+        "($I13 = 0$, $Lambda = p$: no logarithms exactly for odd $p$)", "Theorem 3.2",
+        "comparison of the per-$p$ verdicts (`residue`) with the theorem's", Outcome.FAIL if mismatches else Outcome.PASS,
+        0.0, len(residue_ps), "; ".join(mismatches) or f"{len(residue_ps)} values of $p$ agree"))
     galois_rows = galois_result.exports["log_rows"]
     wrong = [row["p"] for row in galois_rows
              if [_logarithmic(row[k]) for k in ("s1", "s2", "s3", "s4")] != [row["p"] % 2 == 0] * 2 + [False] * 2]
     c_galois_agree = log.record(Certificate(
-        f"the theorem agrees with the exact obstructions at $s1, s2, s3, s4$ for every $p <= {galois_result.exports['galois_pmax']}$ "
-        "($s1$, $s2$ logarithmic exactly for even $p$, $s3$, $s4$ never)", "Conjecture 5.2",
-        "comparison of the per-p verdicts (galois) with the theorem's", Outcome.FAIL if wrong else Outcome.PASS,
-        0.0, len(galois_rows), f"differ at p = {wrong}" if wrong else f"{len(galois_rows)} values of p agree"))
+        f"the theorem agrees with the exact obstructions at $s1$, $s2$, $s3$, $s4$ for every $p <= {galois_result.exports['galois_pmax']}$ "
+        "($s1$, $s2$ logarithmic exactly for even $p$, $s3$, $s4$ never)", "Conjecture 1",
+        "comparison of the per-$p$ verdicts (`galois`) with the theorem's", Outcome.FAIL if wrong else Outcome.PASS,
+        0.0, len(galois_rows), ("differ at " + ", ".join(f"$p = {q}$" for q in wrong)) if wrong
+        else f"{len(galois_rows)} values of $p$ agree"))
     ball_rows = fuchsian_result.exports["rows"]
     disagree = []
     for row in ball_rows:
         exact = local_behaviour(*row["body"])
         # a ball can prove M(x = i) != I; it cannot prove equality: consistent means "excluded" iff not meromorphic
         if row["not_identity_at_i"] == exact.meromorphic:
-            disagree.append(f"({', '.join(row['body'])}): balls {'exclude' if row['not_identity_at_i'] else 'contain'} I, "
+            disagree.append(f"({', '.join(row['body'])}): balls {'exclude' if row['not_identity_at_i'] else 'contain'} $I$, "
                             f"theorem {exact.kind}")
     c_ball_agree = log.record(Certificate(
         "the theorem agrees with the ball monodromy about $x = i$ on the representative bodies (odd, even, non-integer $p$, "
         "$I23 = 0$, general bodies): the ball of $M(x = i) - I$ excludes 0 exactly where a logarithm or a branch is predicted",
-        "Theorem 3.1", "comparison with the certified ball enclosures (fuchsian)",
+        "Theorem 3.2", "comparison with the certified ball enclosures (`fuchsian`)",
         Outcome.FAIL if disagree else Outcome.PASS, 0.0, len(ball_rows),
         "; ".join(disagree) or ", ".join(f"({', '.join(r['body'])}): {local_behaviour(*r['body']).kind}" for r in ball_rows)))
 
     proof = (c_pole, c_residue, c_char, c_square, c_params, c_unipotent)
-    result.formula("pole_theorem", "Theorem 3.1", "Meromorphy and logarithms at the poles, every $p$, every body (theorem)",
+    result.formula("pole_theorem", "Theorem 3.2", "Meromorphy and logarithms at the poles, every $p$, every body (theorem)",
                    [r"\text{at every pole }t_0\text{ of }\omega:\ \text{exponents }0,\ \pm\bar\Lambda,\quad "
                     r"w_-^2=-\bar\Lambda^2",
                     r"\Lambda\ \text{odd}\ \Rightarrow\ \text{every solution meromorphic};\quad \Lambda\ \text{even}\ "
                     r"\Rightarrow\ \text{logarithms};\quad \Lambda\notin\mathbb Z\ \Rightarrow\ \text{branching}",
-                    r"I_{13}=0:\ \Lambda=p\quad(\text{Theorem 3.1 and its converse; Conjecture 5.2 at }s_1,s_2\text{, for every }p)"],
+                    r"I_{13}=0:\ \Lambda=p\quad(\text{Theorem 3.2 and its converse; Conjecture 1 at }s_1,s_2\text{, for every }p)"],
                    *proof, c_residue_agree, c_ball_agree, expr=theorem_expr(),
                    hypotheses=[*BODY_HYPOTHESES, r"$t_0=i\pi/2+i\pi k$, $k\in\mathbb Z$: the poles of $\omega$",
                                r"$\rho_{1,2,3}$: the exponents of the Poisson equations at $t_0$",
                                r"$\Lambda$: the Kovalevskaya exponent of the body",
                                r"$\Lambda=p$: for $I_{13}=0$ ($p$ of section 4)"])
-    result.formula("pole_theorem_proof", "Theorem 3.1", "Proof (local monodromy of Gauss's equation)",
+    result.formula("pole_theorem_proof", "Theorem 3.2", "Proof (local monodromy of Gauss's equation)",
                    r"\parbox{0.94\linewidth}{\small Near a pole, $s=\sinh t$ has $s\mp i\sim(t-t_0)^2$, so a loop about "
                    r"$t_0$ is two loops about $s=\pm i$, where the spinor lift has exponents $\pm\kappa/2$, "
                    r"$\kappa^2=-w_-^2/4$, and local monodromy $M$ with eigenvalues $e^{\pm i\pi\kappa}$ (Levelt); the "

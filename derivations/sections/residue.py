@@ -1,4 +1,4 @@
-"""Sufficient conditions of Theorem 3.1: local monodromy at the poles of omega(t) (section 3.2).
+"""Sufficient conditions of Theorem 3.2: local monodromy at the poles of omega(t) (section 3.2).
 
 Labels: ``eq:at``, ``eq:am1``, ``eq:ro``, ``eq:am2``, ``eq:cpr``, the
 similarity ``S``, the gauge ``U`` and ``B0``, Theorem 3.5 (logarithms), and
@@ -125,7 +125,7 @@ def certify_laurent_series(log: CertificateLog, coth: list, csch: list) -> Certi
     return log.record(Certificate(
         f"Laurent series at $tau = 0$ used by the Frobenius recursion and the gauge: $tau csch(tau) sinh(tau)/tau = 1$ "
         f"and $tau coth(tau) sinh(tau)/tau = cosh(tau)$ to order $tau^{2 * n}$", "Theorem 3.5",
-        "exact truncated power-series identity over $Q$ (Fractions)", Outcome.PASS if ok else Outcome.FAIL,
+        "exact truncated power-series identity over the rationals (Python's `fractions.Fraction`)", Outcome.PASS if ok else Outcome.FAIL,
         elapsed[0], 2 * (n + 1), f"{n + 1} coefficients of each series"))
 
 
@@ -278,6 +278,12 @@ def printed_parts(value: LaurentQD) -> tuple[str, str]:
     return str(factored), breakable_factors(lead, polynomial, value.to_sympy(d) if not polynomial else None)
 
 
+def _coefficient(name: str) -> str:
+    """The free coefficient a chain of the recursion starts from, as a formula: ``alpha`` (the exponent -p) or
+    ``alpha_k`` (``free{k}``: the resonance k)."""
+    return name if name == "alpha" else "alpha_" + name.removeprefix("free")
+
+
 def logarithm_verdict(p_value: int) -> tuple[str, str, int, list[str], float]:
     """Per-p work (run in a worker): the Frobenius recursion at t0 for one integer p.
 
@@ -292,10 +298,11 @@ def logarithm_verdict(p_value: int) -> tuple[str, str, int, list[str], float]:
     positive = all(positive_factors(value) for _, _, value in nonzero)
     printed = [printed_parts(value) for _, _, value in nonzero]
     verdict = ("no logarithms" if not nonzero else
-               "logarithms for every $d > 0$" if positive else "logarithms (generic d)")
+               "logarithms for every $d > 0$" if positive else "logarithms (generic $d$)")
     detail = ("all resonance obstructions vanish identically: "
-              + ", ".join(f"k={k} ({name})" for k, name, _ in obstructions)) if not nonzero else (
-        "non-zero obstruction " + ", ".join(f"$k = {k}$ ({name}): ${text}$" for (k, name, _), (text, _) in zip(nonzero[:2], printed)))
+              + ", ".join(f"$k = {k}$ (${_coefficient(name)}$)" for k, name, _ in obstructions)) if not nonzero else (
+        "non-zero obstruction " + ", ".join(f"$k = {k}$ (${_coefficient(name)}$): ${text}$"
+                                            for (k, name, _), (text, _) in zip(nonzero[:2], printed)))
     return verdict, detail, len(obstructions), [tex for _, tex in printed][:2], elapsed[0]
 
 
@@ -321,7 +328,7 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
     rho2_name = sp.Symbol("rho2")
     rho2 = sp.Rational(1, 4) * (c1_**2 + c2_**2 - 4 * (a_**2 + b_**2) + 4 * sp.I * (a_ * c1_ + b_ * c2_))
     c_ro = certify_zero(log, "$det(A0 - rho) = -rho (rho^2 - rho2^2)$ at $+i pi/2$ with $rho2^2$ of eq:ro (conjugate at "
-                        "-i pi/2)", "eq:ro", [sp.expand((A_plus - rho * sp.eye(3)).det()) + rho * (rho**2 - rho2),
+                        "$-i pi/2$)", "eq:ro", [sp.expand((A_plus - rho * sp.eye(3)).det()) + rho * (rho**2 - rho2),
                                               sp.expand((A_minus - rho * sp.eye(3)).det())
                                               + rho * (rho**2 - rho2.subs(sp.I, -sp.I))], GENERIC)
     result.errata.append(erratum(paper.AM1, "corrected", latex(fixed) + r"\ (t_0=i\pi/2)",
@@ -396,7 +403,8 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
             values, log.map_per_p("Frobenius logarithms at t0", values, logarithm_verdict)):
         cert = log.record(Certificate(
             f"$p = {p_value}$: local solutions of eq:ps at $t0 = i pi/2$ have {verdict}", "Theorem 3.5",
-            "exact Frobenius recursion in Q[d, 1/d] (a subring of $Q(d)$; resonance obstructions)", Outcome.PASS,
+            "exact Frobenius recursion in $Q[d, 1/d]$ (a subring of $Q(d)$; resonance obstructions of the chains of the free "
+            "coefficients: $alpha$ at the exponent $-p$, $alpha_k$ at the resonance $k$)", Outcome.PASS,
             seconds, count, detail))
         log_rows.append({"p": p_value, "parity": "odd" if p_value % 2 else "even", "verdict": verdict,
                          "obstructions": typeset, "certificate": cert.key})
@@ -407,11 +415,11 @@ def run(log: CertificateLog, options, model_result, kova_result, special_result)
             r"\text{all solutions of eq:whole are meromorphic iff }I_{13}=0,\ \frac{I_{22}(I_{11}-I_{22})}{I_{23}^2}=p^2"
             r"\text{ or }I_{23}=0,\ \frac{I_{11}(I_{11}-I_{22})}{I_{13}^2}=-p^2,\ p\text{ odd}",
             "for even $p$ the exact Frobenius recursion at $t0 = i pi/2$ meets a non-zero resonance obstruction "
-            "(logarithms for every d > 0); the gauge argument fails because $B = U^-1 S^-1 A S U - U^-1 deriv(U, tau)$ has "
+            "(logarithms for every $d > 0$); the gauge argument fails because $B = U^-1 S^-1 A S U - U^-1 deriv(U, tau)$ has "
             "poles of order > 1, so Theorem 3.5 does not apply",
             *[c for c in log.certificates if c.derivation == NAME and c.label == "Theorem 3.5"][:8], *gauge_certs))
     result.notes.append(
-        "Theorem 3.1, sufficiency (no logarithms for every integer p): " + ("confirmed for every $p <= %d$." % options.pmax
+        "Theorem 3.2, sufficiency (no logarithms for every integer $p$): " + ("confirmed for every $p <= %d$." % options.pmax
                                                               if not has_logs else
                                                               "refuted for $p$ = " + ", ".join(map(str, has_logs))
                                                               + " (a non-zero resonance obstruction); confirmed for "

@@ -1,7 +1,7 @@
-"""The scattering angle Delta psi between the limit rotation axes (paper section 5.1, Theorem 5.2).
+"""The scattering angle Delta psi between the limit rotation axes (paper section 5.1, Theorem 5.4).
 
 Labels: ``ss`` (boundary condition), ``gam_0`` (Lemma), Proposition 5.1
-(monodromy of F1), the limit of gamma1 before Theorem 5.2, Theorem 5.2
+(monodromy of F1), the limit of gamma1 before Theorem 5.4, Theorem 5.4
 (the angle and its ``p``, ``d``), and the text's limit trajectory after ``ss``.
 Case ``I13 = 0``, ``omega = ((p/d) tanh t, -(p/d) c sech t)``, any real p.
 
@@ -27,7 +27,7 @@ Derivation (a second route beside the paper's monodromy argument)
    ``derivations/sections/scattering_balls.py``).
 4. *Comparison with the paper.*  The monodromy route gives ``1 - 2 sigma1``
    with ``sigma1 = cos^2(pi p/2)/cosh^2(pi p/(2d))`` (exact in exponentials):
-   the same.  The undefined ``q`` of Theorem 5.2 is ``d``.
+   the same.  The undefined ``q`` of Theorem 5.4 is ``d``.
 
 Independent rigorous route (``derivations/sections/scattering_balls.py``): the ss solution enclosed in ball
 arithmetic from ``t = -oo`` to ``+oo`` (``suslov.kernel.enclosure``: limit series with majorant
@@ -59,7 +59,7 @@ from derivations.sections.scattering_evidence import GRID_D, GRID_DIGITS, GRID_D
 from derivations.sections.special_case import CASE, D_POSITIVE, I_DOMAIN, P_REAL
 
 NAME = "scattering"
-TITLE = "The scattering angle (section 5.1, Theorem 5.2)"
+TITLE = "The scattering angle (section 5.1, Theorem 5.4)"
 REQUIRES = ("special_case",)
 
 h1, h2, h3 = sp.symbols("h1:4", real=True)
@@ -94,7 +94,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     g, h, R = [g1, g2, g3], [h1, h2, h3], sp.diag(-1, 1, 1)
 
     # 1. reversal symmetry and 2. rigidity
-    c_sym = certify_zero(log, "R = diag(-1,1,1): -R (g x omega(-t)) = (R g) x omega(t) with $omega1$ odd, $omega2$ even",
+    c_sym = certify_zero(log, "the reflection $R$ that changes the sign of the first component: $-R v = cross(R g, omega(t))$ with "
+                         "$v = cross(g, omega(-t))$, $omega1$ odd, $omega2$ even",
                          "eq:whole", -R * _f(g, (-w1, w2)) - _f(R * sp.Matrix(g), (w1, w2)), POLY)
     c_rigid = certify_zero(log, "$inner(g, h)$ is constant along two solutions of eq:whole", "eq:whole",
                            sp.Matrix(_f(g, (w1, w2))).dot(sp.Matrix(h)) + sp.Matrix(g).dot(_f(h, (w1, w2))), POLY)
@@ -104,13 +105,14 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     # 3. z -> 1 exponent, Gamma-function value, the lemma gam_0
     alphas = (sp.Rational(1, 2), (1 + p) / 2, (1 - p) / 2)
     betas = (sp.Rational(1, 2) - sp.I * p / (2 * d), sp.Rational(1, 2) + sp.I * p / (2 * d))
-    c_s = certify_zero(log, "s = beta1 + beta2 - alpha1 - alpha2 - alpha3 = -1/2 (eq:param)", "eq:param",
+    c_s = certify_zero(log, "$s = beta1 + beta2 - alpha1 - alpha2 - alpha3 = -1/2$ (eq:param)", "eq:param",
                        sp.expand(sum(betas) - sum(alphas) + sp.Rational(1, 2)), Domain("Q(p,d)[i]"))
     c_gamma = scattering_balls.gamma_value(log)
     enclosed, fast_rotation = log.map_per_p(*PREFETCH[0])
     c_grid_balls, c_lemma = (log.record(c) for c in enclosed)
     result.errata.append(erratum(paper.GAM_0, "confirmed", paper.GAM_0.latex,
-                                 "enclosed: the validated ss solution at $t = -1.5$ against Arb's 3F2 (ball certificate)",
+                                 "enclosed: the validated solution with $to(gamma, -e1)$ as $to(t, -oo)$ at $t = -1.5$ against "
+                                 "Arb's generalised hypergeometric function (ball certificate)",
                                  c_lemma))
 
     # 4. the paper's monodromy route: sigma1 and the limit of gamma1
@@ -122,20 +124,20 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                            "cos(pi p/2)^2/cosh(pi p/(2 d))^2$ ($E = e^(i pi p/2)$, $H = e^(pi p/(2 d))$)", "Prop. 5.1",
                            sigma1 - cos_y**2 / cosh_x**2, EXPONENTIALS)
     exp_s = -I_UNIT  # exp(pi i s), s = -1/2
-    c_limit = certify_zero(log, "after the loop: gamma1(+oo) = 1 - 2 i exp(pi i s) sigma1 = 1 - 2 sigma1 (s = -1/2)",
+    c_limit = certify_zero(log, "after the loop: $gamma1(+oo) = 1 - 2 i exp(pi i s) sigma1 = 1 - 2 sigma1$ ($s = -1/2$)",
                            "angle (limit)", (1 - 2 * I_UNIT * exp_s * sig) - (1 - 2 * sig), EXPONENTIALS)
     c_limit_printed = certify_zero(log, "printed: $1 - 2 i exp(pi i/2) sigma1 = 1 - 2 sigma1$", "angle (limit)",
                                    (1 - 2 * I_UNIT * I_UNIT * sig) - (1 - 2 * sig), EXPONENTIALS, expect=Outcome.FAIL)
     X = sp.Symbol("X")  # exp(s) = exp(-1/2) as printed (no pi i): transcendental, a free symbol
-    c_factor_printed = certify_zero(log, "printed factor $exp(beta1+beta2-alpha1-alpha2-alpha3)$ (no pi i) gives the real "
+    c_factor_printed = certify_zero(log, "printed factor $exp(beta1+beta2-alpha1-alpha2-alpha3)$ (no $pi i$) gives the real "
                                     "limit $1 - 2 sigma1$", "Prop. 5.1", (1 - 2 * I_UNIT * X * sig) - (1 - 2 * sig),
                                     Domain("Q(X, sigma1)[i]/(i^2+1)", EXPONENTIALS.extensions), expect=Outcome.FAIL)
-    c_route = certify_zero(log, "the two routes agree: $1 - 2 G1(0)^2 = 1 - 2 sigma1$ with G1(0) = -cos(pi p/2)/cosh(...)",
-                           "Theorem 5.2", (1 - 2 * (cos_y / cosh_x) ** 2) - (1 - 2 * sigma1), EXPONENTIALS)
+    c_route = certify_zero(log, "the two routes agree: $1 - 2 G1(0)^2 = 1 - 2 sigma1$ with $G1(0) = -cos(pi p/2)/cosh(pi p/(2 d))$",
+                           "Theorem 5.4", (1 - 2 * (cos_y / cosh_x) ** 2) - (1 - 2 * sigma1), EXPONENTIALS)
     c_grid = log.record(fast_rotation[0])
     at_p2 = {E: -1}  # p = 2: cos(pi p/2) = -1 < 0
     c_angle_printed = certify_zero(log, "$p = 2$: printed $cos(Delta psi/2) = cos(pi p/2)/cosh(pi p/(2d))$ equals the "
-                                   "value |cos(pi p/2)|/cosh(...) of an angle in [0, pi]", "Theorem 5.2",
+                                   "value $abs(cos(pi p/2))/cosh(pi p/(2 d))$ of an angle in $Interval(0, pi)$", "Theorem 5.4",
                                    (cos_y / cosh_x).subs(at_p2) - 1 / cosh_x, EXPONENTIALS, expect=Outcome.FAIL)
     g1_inf, cos_dpsi = sp.symbols("g1_inf cos_dpsi")
     c_text_printed = certify_zero(log, "text: $gamma1(+oo) = cos(Delta psi)$, with $cos(Delta psi) = -gamma1(+oo)$",
@@ -145,17 +147,17 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     # the emitted evaluation form
     tanh_x, sech_x = shx / chx, 1 / chx
     c_stable = certify_zero(log, "$(sqrt(tanh(x)^2 + sin(y)^2 sech(x)^2), abs(cos(y)) sech(x))$ is on the unit circle and its "
-                            "second entry squared is $cos(y)^2/cosh(x)^2$", "Theorem 5.2",
+                            "second entry squared is $cos(y)^2/cosh(x)^2$", "Theorem 5.4",
                             [tanh_x**2 + sy**2 * sech_x**2 + cy**2 * sech_x**2 - 1,
                              (cy * sech_x) ** 2 - cy**2 / chx**2], HALF_ANGLE)
 
-    # Theorem 5.2's p and d in terms of the inertia tensor (det I = 1, I13 = 0)
+    # Theorem 5.4's p and d in terms of the inertia tensor (det I = 1, I13 = 0)
     det_one = {I33: I33_FROM_DET.subs(I13, 0)}
     p_squared = I22 * (I11 - I22) / I23**2
-    c_p = certify_zero(log, "Theorem 5.2: printed $p^2 = (I11-I22)/(I11 I22 (I11 I22 I33 - 1))$ equals the derived $p^2$",
-                       "Theorem 5.2 (p)", paper.ANGLE_P2.subs(det_one) - p_squared, I_DOMAIN, expect=Outcome.FAIL)
-    c_p_fixed = certify_zero(log, "derived $p^2 = I11 I22 (I11 - I22)/(I11 I22 I33 - 1)$ with det I = 1, $I13 = 0$",
-                             "Theorem 5.2 (p)", (I11 * I22 * (I11 - I22) / (I11 * I22 * I33 - 1)).subs(det_one)
+    c_p = certify_zero(log, "Theorem 5.4: printed $p^2 = (I11-I22)/(I11 I22 (I11 I22 I33 - 1))$ equals the derived $p^2$",
+                       "Theorem 5.4 (p)", paper.ANGLE_P2.subs(det_one) - p_squared, I_DOMAIN, expect=Outcome.FAIL)
+    c_p_fixed = certify_zero(log, "derived $p^2 = I11 I22 (I11 - I22)/(I11 I22 I33 - 1)$ with $det(I) = 1$, $I13 = 0$",
+                             "Theorem 5.4 (p)", (I11 * I22 * (I11 - I22) / (I11 * I22 * I33 - 1)).subs(det_one)
                              - p_squared, I_DOMAIN)
 
     # the closed forms (the exponential forms cos_y/cosh_x of the certificates, E = e^(i pi p/2), H = e^(pi p/(2d)))
@@ -164,7 +166,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     xs, ss, cs = sp.symbols("x s c", nonnegative=True)
     y_ = sp.Symbol("y", real=True)
     stable = 2 * sp.atan2(sp.sqrt(sp.tanh(xs) ** 2 + ss**2 * sp.sech(xs) ** 2), cs * sp.sech(xs))
-    result.formula("angle", "Theorem 5.2", "Scattering angle ($I_{13}=0$, any real $p$)",
+    result.formula("angle", "Theorem 5.4", "Scattering angle ($I_{13}=0$, any real $p$)",
                    r"\cos\frac{\Delta\psi}{2}=\frac{|\cos(\pi p/2)|}{\cosh(\pi p/(2d))},\quad"
                    r"\gamma_1(0)=-\frac{\cos(\pi p/2)}{\cosh(\pi p/(2d))},\quad"
                    r"\cos\Delta\psi=-\lim_{t\to+\infty}\gamma_1",
@@ -173,9 +175,9 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
                                  sp.Eq(sp.Function("gamma1")(0), gamma1_zero, evaluate=False),
                                  sp.Eq(sp.cos(Deltapsi), -sp.Limit(sp.Function("gamma1")(t), t, sp.oo), evaluate=False)),
                    hypotheses=HYPOTHESES)
-    result.formula("angle_stable", "Theorem 5.2", "Scattering angle, evaluation form",
-                   r"\Delta\psi=2\operatorname{atan2}\Big(\sqrt{\tanh^2x+\sin^2y\,\operatorname{sech}^2x},\ "
-                   r"|\cos y|\operatorname{sech}x\Big),\ x=\frac{\pi|p|}{2d},\ y=\frac{\pi p}{2}", c_stable,
+    result.formula("angle_stable", "Theorem 5.4", "Scattering angle, evaluation form (the emitted module evaluates the argument with \\texttt{atan2})",
+                   r"\Delta\psi=2\arg\Big(|\cos y|\operatorname{sech}x+i\sqrt{\tanh^2x+\sin^2y\,\operatorname{sech}^2x}"
+                   r"\Big),\ x=\frac{\pi|p|}{2d},\ y=\frac{\pi p}{2}", c_stable,
                    expr=sp.Tuple(sp.Eq(Deltapsi, stable.subs({ss: sp.sin(y_), cs: sp.Abs(sp.cos(y_))}), evaluate=False),
                                  sp.Eq(xs, sp.pi * sp.Abs(p) / (2 * d), evaluate=False),
                                  sp.Eq(y_, sp.pi * p / 2, evaluate=False)),
@@ -183,8 +185,8 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     result.errata.append(erratum(
         paper.MONODROMY_FACTOR, "corrected",
         r"\mathcal F_1\to\mathcal F_1-2i\exp\big(\pi i(\beta_1+\beta_2-\alpha_1-\alpha_2-\alpha_3)\big)(\cdots)",
-        "the exponent lacks the factor $pi i$ (as printed the limit is not even real); with it exp(pi i s) = -i "
-        "(s = -1/2)", c_factor_printed, c_s, c_limit))
+        "the exponent lacks the factor $pi i$ (as printed the limit is not even real); with it $exp(pi i s) = -i$ "
+        "($s = -1/2$)", c_factor_printed, c_s, c_limit))
     result.errata.append(erratum(
         paper.LIMIT_GAMMA1, "corrected",
         r"\lim_{t\to\infty}\gamma_1=1-2i\exp(-\pi i/2)\sigma_1=1-2\frac{\cos^2(\pi p/2)}{\cosh^2(\pi p/(2d))}",
@@ -193,9 +195,9 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     result.errata.append(erratum(
         paper.ANGLE, "corrected",
         r"\cos\frac{\Delta\psi}2=\frac{|\cos(\pi p/2)|}{\cosh(\pi p/(2d))}\ (q=d),\ \Delta\psi\in[0,\pi]",
-        "$q$ is undefined in the paper: derivation (beta = 1/2 -+ ip/(2d)) and integration give $q = d$; without the "
-        "absolute value the printed right-hand side is $-gamma_1(0)$, negative for 4k+1 < p < 4k+3, which would put "
-        "$Delta psi$ outside [0, pi]", c_angle_printed, c_sigma, c_route, c_grid_balls, c_grid))
+        "$q$ is undefined in the paper: derivation ($beta1 = 1/2 - i p/(2 d)$, $beta2 = 1/2 + i p/(2 d)$) and integration "
+        "give $q = d$; without the absolute value the printed right-hand side is $-gamma_1(0)$, negative for $p$ "
+        "strictly between $4 k + 1$ and $4 k + 3$, which would put $Delta psi$ outside $Interval(0, pi)$", c_angle_printed, c_sigma, c_route, c_grid_balls, c_grid))
     result.errata.append(erratum(
         paper.ANGLE_P, "corrected",
         r"d=\sqrt{\frac{I_{11}-I_{22}}{I_{22}}},\ p=\sqrt{\frac{I_{11}I_{22}(I_{11}-I_{22})}{I_{11}I_{22}I_{33}-1}}",
@@ -203,12 +205,12 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     result.errata.append(erratum(
         paper.SS_LIMIT_TEXT, "corrected",
         r"\gamma(t)\to(-\cos\Delta\psi,\ \sin\Delta\psi\cos(at+\varphi),\ -\sin\Delta\psi\sin(at+\varphi))^T,\ a=p/d",
-        "the text's first component contradicts $cos(Deltapsi)$ = -lim gamma1 two lines later (the formula is "
+        "the text's first component contradicts $cos(Deltapsi) = -gamma1(+oo)$ two lines later (the formula is "
         "the right one: the integration confirms it); the sense of rotation follows $omega1$, which tends to $a$ at $+oo$",
         c_text_printed, c_half, c_grid_balls, c_grid))
     emit = [Emitted("scattering_angle", (xs, ss, cs), (), (stable,),
                     (c_stable.key, c_grid_balls.key, c_route.key),
-                    "Delta psi from x = pi |p|/(2d), s = |sin(pi p/2)|, c = |cos(pi p/2)| (Theorem 5.2, evaluation form).")]
+                    "Delta psi from x = pi |p|/(2d), s = |sin(pi p/2)|, c = |cos(pi p/2)| (Theorem 5.4, evaluation form).")]
     result.exports.update(emit=emit, grid={"p": GRID_P, "d": GRID_D, "dps": GRID_DPS, "digits": GRID_DIGITS},
                           certificates={"angle": c_grid_balls.key, "stable": c_stable.key, "route": c_route.key})
     return result

@@ -1,4 +1,4 @@
-"""Enclosure certificates for the scattering angle (paper section 5.1, Theorem 5.2, ``gam_0``).
+"""Enclosure certificates for the scattering angle (paper section 5.1, Theorem 5.4, ``gam_0``).
 
 The numeric claims of ``derivations/sections/scattering.py`` decided with balls (``derivations/core/balls.py``)
 instead of spot checks:
@@ -66,9 +66,9 @@ def gamma_value(log: CertificateLog) -> Certificate:
         return out
 
     return certify_enclosure(
-        log, "Gamma(b1) Gamma(b2) Gamma(-s)/(Gamma(a1) Gamma(a2) Gamma(a3)) = cos(pi p/2)/cosh(pi p/(2d)) to 1e-40 at "
-        f"(p, d) in {{{', '.join(f'({a}, {b})' for a, b in GAMMA_POINTS)}}}", "Theorem 5.2", quantities, arb(10) ** -40,
-        prec=160, what="acb Gamma and reciprocal Gamma")
+        log, "$Gamma(b1) Gamma(b2) Gamma(-s)/(Gamma(a1) Gamma(a2) Gamma(a3)) = cos(pi p/2)/cosh(pi p/(2 d))$ to $1e-40$ at "
+        f"$(p, d)$ = {', '.join(f'$({a}, {b})$' for a, b in GAMMA_POINTS)}", "Theorem 5.4", quantities, arb(10) ** -40,
+        prec=160, what="`acb.gamma` and `acb.rgamma`")
 
 
 def grid(log: CertificateLog) -> tuple[Certificate, Certificate]:
@@ -93,11 +93,11 @@ def grid(log: CertificateLog) -> tuple[Certificate, Certificate]:
 
     points = f"{len(GRID_P) * len(GRID_D)} points: $p$ in {', '.join(GRID_P)}, $d$ in {', '.join(GRID_D)}"
     c_grid = certify_enclosure(
-        log, f"the ss solution enclosed from $t = -oo$ to $+oo$ has $G1(0) = -cos(pi p/2)/cosh(pi p/(2d))$ and $cos(Deltapsi) "
-        f"= 2 cos(pi p/2)^2/cosh(pi p/(2 d))^2 - 1$ to ${TOLERANCE}$ ({points})", "Theorem 5.2", against_closed_form,
+        log, f"the solution with $to(gamma, -e1)$ as $to(t, -oo)$, enclosed from $t = -oo$ to $+oo$, has $G1(0) = -cos(pi p/2)/cosh(pi p/(2d))$ and $cos(Deltapsi) "
+        f"= 2 cos(pi p/2)^2/cosh(pi p/(2 d))^2 - 1$ to ${TOLERANCE}$ ({points})", "Theorem 5.4", against_closed_form,
         arb(TOLERANCE), prec=int(3.33 * GRID_DIGITS + 40), doublings=1,
         what="validated integration (limit series with majorant remainders + Taylor steps with Cauchy bounds, "
-             "suslov.kernel.enclosure) against the closed form")
+             "`suslov.kernel.enclosure`) against the closed form")
 
     def lemma(prec: int) -> list:
         out = []
@@ -112,8 +112,9 @@ def grid(log: CertificateLog) -> tuple[Certificate, Certificate]:
         return out
 
     c_lemma = certify_enclosure(
-        log, "gam_0: the ss solution has $G1 = -sqrt(1-z) hyper((1/2, (1+p)/2, (1-p)/2), (1/2 - i p/(2 d), 1/2 + i p/(2 d)), z)$, "
-        f"$z = sech(t)^2$, at $t = -{SERIES_START}$ to {TOLERANCE} ({points})", "gam_0", lemma, arb(TOLERANCE),
+        log, "gam_0: the solution with $to(gamma, -e1)$ as $to(t, -oo)$ has $G1 = -sqrt(1-z) hyper((1/2, (1+p)/2, (1-p)/2), (1/2 - i p/(2 d), 1/2 + i p/(2 d)), z)$, "
+        f"$z = sech(t)^2$, at $t = -{SERIES_START}$ to ${TOLERANCE}$ ({points})", "gam_0", lemma, arb(TOLERANCE),
         prec=int(3.33 * GRID_DIGITS + 40), doublings=0,
-        what="validated ss solution (limit series at $t = -oo$ with its remainder bound) against Arb's 3F2")
+        what="validated solution (limit series at $t = -oo$ with its remainder bound) against Arb's generalised "
+             "hypergeometric function `acb.hypgeom`")
     return c_grid, c_lemma

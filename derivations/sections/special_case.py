@@ -160,7 +160,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
         r"=\frac{I_{11}I_{22}(I_{11}-I_{22})}{I_{11}I_{22}I_{33}-1}\ (\det\mathbb I=1)",
         "the printed value is $p^2$ of the printed gen12, whose time runs $-I11 I22$ times faster; "
         "for the equations derived from 3.25 the parameter gains the factor $(I11 I22)^2$ "
-        "(the Kovalevskaya side of Theorem 3.1 is re-derived separately)",
+        "(the Kovalevskaya side of Theorem 3.2 is re-derived separately)",
         c_necc1, c_necc1_scale))
 
     a_printed = paper.OMEGAS_A.subs(det_one)
@@ -236,9 +236,9 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                                  c_level))
 
     limits = _limits(solution)
-    c_lim = certify_zero(log, "omega(t) -> (+-p/d, 0) as t -> +-oo (tanh -> +-1, sech -> 0)", "omegas",
+    c_lim = certify_zero(log, "$to(omega(t), (pm(p/d), 0))$ as $to(t, pm(oo))$ ($to(tanh(t), pm(1))$, $to(sech(t), 0)$)", "omegas",
                          [limits[1][0] - p / d, limits[1][1], limits[-1][0] + p / d, limits[-1][1]], PD_DOMAIN)
-    c_lim_text = certify_zero(log, "text: the limit angular velocity is $mp a$ as t -> +-oo", "omegas (text)",
+    c_lim_text = certify_zero(log, "text: the limit angular velocity is $mp a$ as $to(t, pm(oo))$", "omegas (text)",
                               [limits[1][0] + p / d, limits[-1][0] - p / d], PD_DOMAIN, expect=Outcome.FAIL)
     result.formula("limits", "omegas", "Limit steady rotations about $(1,0,0)$",
                    r"\lim_{t\to\pm\infty}\omega(t)=\left(\pm\frac{p}{d},\,0\right)", c_lim,
@@ -257,7 +257,7 @@ def run(log: CertificateLog, options, model_result) -> DerivationResult:
                          list(A0 - paper.AM2_MATRIX), PD_DOMAIN)
     c_res_num = _laurent_limit(log, A, A0)
     lam_poly = sp.expand((A0 - lam * sp.eye(3)).det())
-    c_char = certify_zero(log, "$det(A0 - lam) = -(lam^3 - p^2 lam)$: eigenvalues $0$, +-p", "eq:ro",
+    c_char = certify_zero(log, "$det(A0 - lam) = -(lam^3 - p^2 lam)$: eigenvalues $0$, $pm(p)$", "eq:ro",
                           lam_poly + lam**3 - p**2 * lam, PD_DOMAIN)
     A0_shown, characteristic = sp.ImmutableMatrix(positive_branch(A0)), flint_factor.factor(-lam**3 + p**2 * lam)
     result.formula("A0", "eq:am2, eq:ro", "Residue of $A(t)$ at $t_0=i\\pi/2$ and its eigenvalues",

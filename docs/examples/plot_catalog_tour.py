@@ -109,7 +109,7 @@ print(P.mathematica[:200], "...")
 # The angle over one inertia entry, and the Liouvillian bodies
 # ------------------------------------------------------------
 # Along I13 = 0 (I11 = 2, I22 = 1, d = 1) the entry I23 = -1/p sets p; the Galois group is reducible
-# (Liouvillian) exactly for odd p, where the angle is pi (Theorem 5.2:
+# (Liouvillian) exactly for odd p, where the angle is pi (Theorem 5.4:
 # ``cos(angle/2) = |cos(pi p/2)| / cosh(pi p/(2d))``).  Those bodies are decided exactly and marked; off that
 # line (I13 = 0.1) no body of this range is Liouvillian.
 i23 = np.linspace(-1.25, -0.13, 600)

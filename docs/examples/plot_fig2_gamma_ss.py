@@ -7,7 +7,7 @@ The paper's Fig. 2: *a generic trajectory gamma(t) = (g1, g2, g3) with the bound
 p = 2.5, d = 0.7: p is not an odd integer, so there is no closed-form solution and the planner
 integrates the Poisson equations (DOP853 with a bounded step, started from the ss power series
 so that a start on the limit axis cannot jump the transition).  The scattering angle between the
-limit axes is the closed form of Theorem 5.2 (corrected), valid for every real p.
+limit axes is the closed form of Theorem 5.4 (corrected), valid for every real p.
 """
 import json
 from pathlib import Path

@@ -4,7 +4,7 @@ The scattering angle of a general body, over (I13, I23)
 
 The paper's open case (its Conclusion): for I13 != 0 the paper has no closed form for the scattering
 angle; the project derives one (Gauss's equation in s = sinh t).  A sweep scene names many bodies;
-the planner evaluates that certified closed form for each (Theorem 5.2 on the line I13 = 0) and, where
+the planner evaluates that certified closed form for each (Theorem 5.4 on the line I13 = 0) and, where
 the scene asks for ``scattering_angle_integrated``, integrates the ss solution with heyoka's Taylor
 method as the independent check, one row per body.  Here a coarser copy of ``scenes/general_body_study.toml`` (21 x 21 bodies, 3 energies)
 runs in one process; the shipped scene (41 x 41) runs the same way with

@@ -1,7 +1,7 @@
 """Validated integration of the Poisson equations: rigorous enclosures of the ss solution and its angle.
 
 Paper: eq:whole (``gamma' = gamma x omega``), eq:o12 (the general solution omega(t) of any body
-with I12 = 0, a = e3), the boundary condition ``ss`` and the angle of Theorem 5.2 (section 5.1),
+with I12 = 0, a = e3), the boundary condition ``ss`` and the angle of Theorem 5.4 (section 5.1),
 here for *any* body (I13 != 0 included): the independent route beside the closed form of every body
 (``derivations/sections/general_angle.py`` checks one against the other).  No SymPy and no
 ``generated`` import: the build (``derivations/sections/scattering.py``) and the run time (``suslov.validated``)
@@ -11,7 +11,7 @@ ball arithmetic (``arb``); every number returned is an interval that contains th
 Set-up (rate-1 time s; another energy only rescales time, which changes neither the path of gamma
 nor the angle).  ``omega(s) = u tanh s + v sech s`` (u, v: pairs of balls), ``n = u/|u|``.  The ss solution has
 ``gamma(-oo) = -n``; the angle between the limit rotation axes is ``Delta psi = arccos(-<gamma(+oo), n>)``
-(for I13 = 0 this is ``cos Delta psi = -gamma1(+oo)``, the definition of Theorem 5.2).
+(for I13 = 0 this is ``cos Delta psi = -gamma1(+oo)``, the definition of Theorem 5.4).
 
 The enclosure, in three rigorous pieces:
 

@@ -1,6 +1,6 @@
 """Meromorphic, logarithmic or branching at the poles of omega: the theorem for every body, decided exactly.
 
-Paper: Theorem 3.1 (eq:necc1), section 3.2 and Conjecture 5.2.  The theorem and its proof are certified by
+Paper: Theorem 3.2 (eq:necc1), section 3.2 and Conjecture 1.  The theorem and its proof are certified by
 the build (:mod:`derivations.sections.pole_theorem`): at every pole t0 = +-i pi/2 + i pi k of
 ``omega = u tanh t + v sech t`` the Poisson equations have exponents 0, +-conj(Lambda), where
 ``Lambda^2 = -conj(w_-^2)`` is the Kovalevskaya exponent's square, and

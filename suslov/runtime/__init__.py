@@ -13,7 +13,7 @@ One module per concern:
 * :mod:`.angular` -- omega (case I13 = 0) and the general omega of any tensor, float and mpmath;
 * :mod:`.integrals` -- the polynomial first integral: exact coefficients, float64 path, mp twin;
 * :mod:`.basis` -- the orthonormal basis: ball series, float path with phase reduction, mp twin;
-* :mod:`.angle` -- the scattering angle of Theorem 5.2: float, mpmath and ball forms;
+* :mod:`.angle` -- the scattering angle of Theorem 5.4: float, mpmath and ball forms;
 * :mod:`.bodies` -- numeric inertia tensors: special-case parameters, Kovalevskaya exponents, meromorphy.
 
 May import: ``suslov.kernel``, ``suslov.recipes`` (and NumPy, mpmath, python-flint); never SymPy,

@@ -1,4 +1,4 @@
-"""The scattering angle of Theorem 5.2 (corrected) in float64, mpmath and ball arithmetic.
+"""The scattering angle of Theorem 5.4 (corrected) in float64, mpmath and ball arithmetic.
 
 ``emitted`` is the generated module's ``_scattering_angle(ctx, x, s, c)`` with ``x = pi |p|/(2d)`` and
 ``s``, ``c`` = ``|sin|``, ``|cos|`` of ``pi p/2``; here the exact reduction of pi p/2

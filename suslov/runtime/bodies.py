@@ -1,6 +1,6 @@
 """Numeric inertia tensors: the paper's frame, the special case I13 = 0, Kovalevskaya exponents, meromorphy.
 
-Sections 2, 3.1 and Theorem 3.1 (corrected).  ``canonical_frame`` (``suslov.kernel.frames``) validates
+Sections 2, 3.1 and Theorem 3.2 (corrected).  ``canonical_frame`` (``suslov.kernel.frames``) validates
 the tensor, scales it to entries of order 1 (every answer is scale-invariant) and rotates about
 a = e3 to I12 = 0, I11 >= I22, det I = 1.  The formulas are the generated module's emitted
 ``_special_parameters``, ``_lambda_squared``, ``_p_squared_i13_zero`` and ``_p_squared_i23_zero``, passed in.
