@@ -60,7 +60,7 @@ compute = ["omega", "gamma", "orientation", "integral_drift", "scattering_angle"
 """
 INTEGRATE = """
 name = "integrate"
-description = "p = 2.5: gamma has no closed form, it is integrated"
+description = "p = 2.5: gamma integrated on request (the cross-check of the Gauss route)"
 [body]
 p = 2.5
 d = 0.7
@@ -69,6 +69,8 @@ time = [-5.0, 5.0]
 samples = 21
 [effects]
 compute = ["gamma", "scattering_angle"]
+[numerics]
+gamma_route = "integrate"
 {numerics}
 """
 SWEEP = """
@@ -132,7 +134,7 @@ def test_the_certified_basis_needs_no_integrator(tmp_path):
     assert json.loads((out / "results.json").read_text())["results"]["gamma"]["method"] == "closed form gamma_basis"
 
 
-@pytest.mark.parametrize("numerics, library", [("", "heyoka"), ('[numerics]\nmethod = "scipy:DOP853"', "scipy")])
+@pytest.mark.parametrize("numerics, library", [("", "heyoka"), ('method = "scipy:DOP853"', "scipy")])
 def test_a_scene_that_integrates_exits_2_naming_the_extra_and_writes_nothing(tmp_path, numerics, library):
     out = tmp_path / "out"
     done = core(tmp_path, "simulate", scene(tmp_path, "integrate", INTEGRATE.format(numerics=numerics)), "--out", out)
@@ -176,7 +178,7 @@ def test_simulate_from_python_raises_naming_the_extra(monkeypatch):
     """The same check in ``suslov.simulate``: an ImportError before any work; closed forms still run."""
     monkeypatch.setitem(sys.modules, "heyoka", None)
     integrating = {"body": {"p": 2.5, "d": 0.7}, "motion": {"time": [-3, 3], "samples": 5},
-                   "effects": {"compute": ["gamma"]}}
+                   "effects": {"compute": ["gamma"]}, "numerics": {"gamma_route": "integrate"}}
     with pytest.raises(ImportError) as error:
         suslov.simulate(integrating)
     assert "[sim] extra (heyoka not installed)" in str(error.value) and HINT in str(error.value)

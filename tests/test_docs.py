@@ -116,6 +116,6 @@ def test_first_integral_page_shows_rounding_level_drift(built):
 def test_scene_pages_reproduce_the_scene_results(built):
     _, out = built
     fig2 = _text(out / "auto_examples" / "plot_fig2_gamma_ss.html")
-    assert "gamma_integrate" in fig2 and "angle_closed_form" in fig2   # the planner's choice is on the page
+    assert "gamma_gauss" in fig2 and "angle_closed_form" in fig2   # the planner's choice is on the page
     fig5 = _text(out / "auto_examples" / "plot_fig5_basis_p3.html")
     assert "closed form gamma_basis" in fig5 and '"F3"' in fig5

@@ -15,7 +15,7 @@ what the scene asks for (DESIGN notes in ``docs/simulator.md``).
 (5, 3)
 >>> angle = result["scattering_angle"]
 >>> round(angle["radians"], 6), angle["method"]
-(3.134123, 'closed form (Theorem 5.2, corrected: q = d)')
+(3.134123, 'closed form (Theorem 5.4, corrected: q = d)')
 >>> fig = result.plot("omega_plane")      # a matplotlib Figure
 """
 from __future__ import annotations

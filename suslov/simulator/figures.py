@@ -106,7 +106,7 @@ def gamma_components(run):
     if angle is not None:
         if body.special:   # the limit axis is e1: gamma1 itself converges, to -cos(Delta psi)
             ax.axhline(-np.cos(angle), color="0.4", ls=":", lw=1.2,
-                       label=r"$\gamma_1(+\infty)=-\cos\Delta\psi$ (Theorem 5.2)")
+                       label=r"$\gamma_1(+\infty)=-\cos\Delta\psi$ (Theorem 5.4)")
         else:              # the components keep turning about the limit axis n; <gamma, n> converges
             n = body.to_scene(body.limit_axis())
             ax.plot(t, g @ n, color="k", lw=1.6, ls="--", label=r"$\langle\gamma(t), n\rangle$, $n$ the limit axis")

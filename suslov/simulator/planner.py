@@ -9,10 +9,14 @@ topological order: a need always comes earlier).  The whole policy is the table
 
 * omega is always a certified closed form (``omega`` / ``omega_general``, paper eq:o12, omegas).
 * A Poisson solution (``gamma``, ``orientation``) is the certified basis ``gamma_basis``
-  (Theorem 6.1) when I13 = 0 and p is an odd integer with a certified basis; otherwise numerical
-  integration (heyoka's Taylor integrator by default, SciPy on request; ``suslov.simulator.taylor``,
-  ``suslov.simulator.integrate``).
-* The scattering angle is always a certified closed form, never an integration: Theorem 5.2
+  (Theorem 6.1) when I13 = 0 and p is an odd integer with a certified basis; otherwise the closed form of
+  every body from Gauss's 2F1 (``gauss_2f1``, :mod:`suslov.kernel.gauss_gamma`, evaluated in float64 by
+  :mod:`suslov.kernel.gauss_gamma_float` and checked on every run: ``|gamma|``, the mpmath closed form at a few
+  samples, the ODE residual there) while ``|u| + |v| <= GAUSS_MAX_OMEGA`` (its precomputation grows like
+  |omega|); numerical integration (heyoka's Taylor integrator by default, SciPy on request;
+  ``suslov.simulator.taylor``, ``suslov.simulator.integrate``) beyond that, or as the cross-check when the
+  scene says ``[numerics] gamma_route = "integrate"``.
+* The scattering angle is always a certified closed form, never an integration: Theorem 5.4
   (corrected) whenever I13 = 0, for any real p; for every other body the closed form of every
   body (``general_scattering_angle``: Gauss's equation in s = sinh t).
 * ``scattering_angle_integrated`` is the explicit cross-check: the ss solution integrated to
@@ -35,6 +39,8 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+
+import numpy as np
 
 from suslov.extras import FIGURES as FIGURE_LIBRARIES
 from suslov.loader import gf
@@ -76,6 +82,24 @@ def _closed_basis(scene, body):
     return _suslov(scene, body) and body.odd_integer_p is not None
 
 
+GAUSS_MAX_OMEGA = 500.0   # |u| + |v| (omega at rate 1) up to which gamma is Gauss's closed form (docs/simulator.md)
+
+
+def gauss_applies(body) -> bool:
+    """The Gauss route's size condition: ``|u| + |v| <= GAUSS_MAX_OMEGA`` (its Taylor centres and mpmath's hyp2f1
+    grow with |omega|: 0.13 s at |u| + |v| = 8, 1.3-1.7 s at about 120, 12-18 s at about 420 on the Fig. 2 grid, on the
+    bench machine; beyond, integration)."""
+    return float(np.hypot(*body.u) + np.hypot(*body.v)) <= GAUSS_MAX_OMEGA
+
+
+def _gauss(scene, body):
+    return _suslov(scene, body) and scene.gamma_route == "gauss_2f1" and gauss_applies(body)
+
+
+GAUSS_CONDITION = f'any Suslov body with |u| + |v| <= {GAUSS_MAX_OMEGA:g} (numerics.gamma_route = "gauss_2f1", default)'
+INTEGRATE_CONDITION = f'otherwise (gamma_route = "integrate", or |u| + |v| > {GAUSS_MAX_OMEGA:g})'
+
+
 def _special(scene, body):
     return _suslov(scene, body) and body.special
 
@@ -99,18 +123,23 @@ PROVIDERS = (
              lambda s, b: "closed-form velocities + DOP853 quadrature"),
     Provider("gamma", "gamma_closed_form", (), "I13 = 0 and p an odd integer with a certified basis",
              _closed_basis, lambda s, b: f"gamma_basis (odd p = {b.odd_integer_p}), {_start(s)}"),
-    Provider("gamma", "gamma_integrate", (), "otherwise (no closed form)", _suslov,
+    Provider("gamma", "gamma_gauss", (), GAUSS_CONDITION, _gauss,
+             lambda s, b: f"gauss_2f1: Gauss's 2F1 closed form (float64 series, checked), {_start(s)}"),
+    Provider("gamma", "gamma_integrate", (), INTEGRATE_CONDITION, _suslov,
              lambda s, b: f"{integrator_name(s)}, {_start(s)}"),
     Provider("orientation", "orientation_closed_form", (), "I13 = 0 and p an odd integer with a certified basis",
              _closed_basis, lambda s, b: f"gamma_basis rows (odd p = {b.odd_integer_p})"),
-    Provider("orientation", "orientation_integrate", (), "otherwise (no closed form)", _suslov,
+    Provider("orientation", "orientation_gauss", (), GAUSS_CONDITION, _gauss,
+             lambda s, b: "gauss_2f1: Gauss's 2F1 closed form (float64 series, checked), three solutions from the "
+                          "identity at t0"),
+    Provider("orientation", "orientation_integrate", (), INTEGRATE_CONDITION, _suslov,
              lambda s, b: f"{integrator_name(s)}, three solutions from the identity at t0"),
     Provider("integral_drift", "integrals", ("omega", "gamma"), "a Suslov body", _suslov,
              lambda s, b: "F1 (energy), F2 = |gamma|^2" + (", F3 polynomial (Theorem 6.2)"
                                                            if _closed_basis(s, b) and b.odd_integer_p in gf.INTEGRAL_PS
                                                            else "")),
     Provider("scattering_angle", "angle_closed_form", (), "I13 = 0 (any real p)", _special,
-             lambda s, b: "scattering_angle(p, d) (Theorem 5.2, corrected)"),
+             lambda s, b: "scattering_angle(p, d) (Theorem 5.4, corrected)"),
     Provider("scattering_angle", "angle_general_closed_form", (), "any Suslov body (I13 != 0 included)", _suslov,
              lambda s, b: "the closed form of every body: Gauss's equation in s = sinh t (certified)"),
     Provider("scattering_angle_integrated", "angle_integrate", (), "any Suslov body (a cross-check)", _suslov,

@@ -43,6 +43,9 @@ A scene is declarative: it names the effects wanted, never the method.  Schema::
     method = "taylor"                      # heyoka's Taylor integrator (default); SciPy as cross-check:
                                            # "scipy:DOP853", "scipy:RK45", "scipy:Radau", "scipy:LSODA"
                                            # (a bare "DOP853" means "scipy:DOP853")
+    gamma_route = "gauss_2f1"              # gamma, orientation: Gauss's 2F1 closed form of every body (default;
+                                           # suslov.kernel.gauss_gamma), or "integrate": the integrator above,
+                                           # as a cross-check (odd p with a certified basis: that basis either way)
 
 A *sweep scene* has a ``[sweep]`` table instead of ``[body]`` (schema: :mod:`suslov.simulator.sweep_spec`):
 many bodies, scalar effects only (``SWEEP_EFFECTS``), one row per point in ``results.csv``, and
@@ -89,6 +92,7 @@ SWEEP_EFFECTS = ("scattering_angle", "scattering_angle_integrated", "scattering_
                  "local_behaviour")
 SWEEP_FIGURES = ("map", "histogram")
 SCIPY_METHODS = ("RK45", "DOP853", "Radau", "LSODA")
+GAMMA_ROUTES = ("gauss_2f1", "integrate")
 METHODS = ("taylor", *(f"scipy:{m}" for m in SCIPY_METHODS))
 MAX_SAMPLES = 1_000_000
 FIGURE_FORMATS = ("png", "pdf", "svg")
@@ -113,6 +117,7 @@ class Scene:
     title: str = ""
     figures_format: tuple = ("png",)
     sweep: object = None           # a suslov.simulator.sweep_spec.Sweep for a sweep scene
+    gamma_route: str = "gauss_2f1"   # gamma, orientation: "gauss_2f1" (closed form) or "integrate" (cross-check)
 
     @property
     def is_sweep(self) -> bool:
@@ -317,7 +322,10 @@ def _numerics(path, numerics):
     if method not in METHODS:
         raise SceneError(path, "numerics.method", f"{method!r}: must be one of {', '.join(METHODS)} (a bare SciPy "
                          f"name, {', '.join(SCIPY_METHODS)}, is read as scipy:NAME)")
-    return rtol, atol, method
+    route = numerics.get("gamma_route", "gauss_2f1")
+    if route not in GAMMA_ROUTES:
+        raise SceneError(path, "numerics.gamma_route", f"{route!r}: must be one of {', '.join(GAMMA_ROUTES)}")
+    return rtol, atol, method, route
 
 
 def load_scene(path) -> Scene:
@@ -367,10 +375,11 @@ def parse_scene(data: dict, path=None) -> Scene:
     window, samples, energy, initial, speed = _motion(path, motion, sweep)
     compute, figures, formats = _effects(path, _table(path, data, "effects", ("compute", "figures", "figures_format")),
                                          body, sweep)
-    rtol, atol, method = _numerics(path, _table(path, data, "numerics", ("rtol", "atol", "method")))
+    rtol, atol, method, route = _numerics(path, _table(path, data, "numerics", ("rtol", "atol", "method",
+                                                                                "gamma_route")))
     if body and "p" in body and "integral_drift" in compute:
         _drift_in_float64(path, body, energy)
     default_name = "scene" if path.name == "<dict>" else path.stem
     return Scene(path, data.get("name", default_name), data.get("description", ""), body or {"kind": "sweep"}, window,
                  samples, energy, initial, speed, list(dict.fromkeys(compute)), list(dict.fromkeys(figures)), rtol,
-                 atol, method, data.get("title", ""), tuple(dict.fromkeys(formats)), sweep)
+                 atol, method, data.get("title", ""), tuple(dict.fromkeys(formats)), sweep, route)

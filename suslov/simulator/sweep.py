@@ -1,8 +1,8 @@
-"""Sweep scenes: the scattering angle (paper section 5.1, Theorem 5.2, eq:o12) over many bodies and energies.
+"""Sweep scenes: the scattering angle (paper section 5.1, Theorem 5.4, eq:o12) over many bodies and energies.
 
 A sweep scene (:mod:`suslov.simulator.sweep_spec`) names points; each point is a body.  The method per
 point comes from the planner's provider table (:func:`suslov.simulator.planner.point_steps`): for
-``scattering_angle`` the closed form of Theorem 5.2 when I13 = 0 and the closed form of every body
+``scattering_angle`` the closed form of Theorem 5.4 when I13 = 0 and the closed form of every body
 (``general_scattering_angle``) otherwise, never an integration; for ``scattering_angle_integrated``
 (the cross-check) Taylor integration of the ss solution (SciPy on request) at every point; for
 ``scattering_angle_enclosure`` a ball of the closed form of every body.  The exact effects (``galois_group``,
@@ -15,7 +15,7 @@ directory (``.NAME.chunks``) until the whole sweep succeeded, so an interrupted 
 The scattering angle of a general body (I13 != 0) is the spatial angle between the limit
 positions of the body axis ``n = u/|u|`` about which the body rotates at t -> -oo and t -> +oo:
 with gamma the ss solution (gamma(-oo) = -n), ``cos(Delta psi) = -<gamma(+oo), n>``.  For I13 = 0
-this is Theorem 5.2's angle, ``scattering_angle(p, d)``; for every body the closed form and the
+this is Theorem 5.4's angle, ``scattering_angle(p, d)``; for every body the closed form and the
 integration agree (both checked in tests/test_sweep.py).
 
 Output (written atomically into ``--out``): ``results.csv`` (``results.parquet`` too when pyarrow
@@ -54,7 +54,7 @@ from suslov.simulator.sweep_spec import tensor_of
 
 SAMPLE_FOR_EXPLAIN = 20_000
 # seconds per point and step (evaluate_point, warm, one process) on the 2-core machine under load 3, rounded up:
-# Theorem 5.2 48 us, the closed form of every body 158 us, a refused point 37 us, Taylor with the closed form
+# Theorem 5.4 48 us, the closed form of every body 158 us, a refused point 37 us, Taylor with the closed form
 # 511 us, the exact Galois group 174-247 us, the ball 274 us (issue 44; the last two were 0.3 s when they were
 # monodromy balls).  --explain and --quiet use them; a sweep with progress lines times its own points.
 COST = {"galois_monodromy": 3e-4, "local_behaviour": 2e-4, "angle_closed_form": 5e-5, "angle_general_closed_form": 2e-4,
@@ -197,11 +197,11 @@ def plan_sweep(scene, workers: int | None = None, scheduler: str | None = None) 
 
 
 def _angle(body, steps, point):
-    """(angle, error, method) by the closed form the effect graph chose: Theorem 5.2 or that of every body."""
+    """(angle, error, method) by the closed form the effect graph chose: Theorem 5.4 or that of every body."""
     if "angle_closed_form" in steps:
         # a (p, d) point is evaluated at its own p, d (the body's are recomputed from a tensor, to rounding)
         p, d = (point["p"], point["d"]) if "p" in point else (body.p, body.d)
-        return float(gf.scattering_angle(p, d)), 1e-13 * math.pi, "closed form (Theorem 5.2)"
+        return float(gf.scattering_angle(p, d)), 1e-13 * math.pi, "closed form (Theorem 5.4)"
     angle, bound = general_angle(body)
     return angle, bound, "closed form of every body (Gauss's equation in s = sinh t)"
 

@@ -1,7 +1,7 @@
 """Sweep scenes: many bodies instead of one (the ``[sweep]`` table, which takes the place of ``[body]``).
 
 The paper's open problem (Conclusion: the general case I13 != 0, where the paper has no closed form;
-``general_scattering_angle`` is one) asks for maps of the scattering angle (section 5.1, Theorem 5.2)
+``general_scattering_angle`` is one) asks for maps of the scattering angle (section 5.1, Theorem 5.4)
 over inertia tensors and energies.  A sweep names
 the points; the planner chooses a method per point; the executor runs them in chunks.
 
