@@ -39,15 +39,17 @@ def ball_digits(x: arb) -> int:
     """
     if not x.is_finite():
         return 1
-    mid, rad = abs(x.mid()), x.rad()
+    mid, rad = x.mid(), x.rad()
     if mid.is_zero():
         return 1
     if rad.is_zero():
+        # the exact midpoint's own mantissa (abs() would round it to the context's precision first: an exact
+        # 20-digit integer raised "man_exp requires an exact value")
         mantissa, _ = mid.man_exp()
-        bits = int(mantissa).bit_length()
+        bits = abs(int(mantissa)).bit_length()
         return min(MAX_DIGITS, max(_EXACT_DIGITS, math.ceil(bits * math.log10(2)) + 1))
     with ctx.workprec(64):
-        decades = (mid / rad).log() / arb(10).log()   # log10(|mid|/rad) as a ball: its width is about 1e-17
+        decades = (abs(mid) / rad).log() / arb(10).log()   # log10(|mid|/rad) as a ball: its width is about 1e-17
     if not decades.is_finite():
         return 1
     return max(1, min(MAX_DIGITS, math.floor(float(decades.mid())) + 2))
