@@ -13,7 +13,7 @@ topological order: a need always comes earlier).  The whole policy is the table
   every body from Gauss's 2F1 (``gauss_2f1``, :mod:`suslov.kernel.gauss_gamma`, evaluated in float64 by
   :mod:`suslov.kernel.gauss_gamma_float` and checked on every run: ``|gamma|``, the mpmath closed form at a few
   samples, the ODE residual there) while ``|u| + |v| <= GAUSS_MAX_OMEGA`` (its precomputation grows like
-  |omega|); numerical integration (heyoka's Taylor integrator by default, SciPy on request;
+  ``|omega|``); numerical integration (heyoka's Taylor integrator by default, SciPy on request;
   ``suslov.simulator.taylor``, ``suslov.simulator.integrate``) beyond that, or as the cross-check when the
   scene says ``[numerics] gamma_route = "integrate"``.
 * The scattering angle is always a certified closed form, never an integration: Theorem 5.4
