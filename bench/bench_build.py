@@ -16,6 +16,13 @@ per-p phase, and extrapolates the phase to pmax 101 and 201 (sum of c p^k).
 when ``--baseline`` is given (the two see the same machine state; the table quotes medians and their
 ratio), and ``build_formulas.py --verify`` of each tree N times.
 
+The machine is shared, so every timed build first waits (at most ``--max-wait`` seconds) until the other
+processes have used less than ``--quiet-below`` cores for 3 s, and measures what they used while it ran
+(the busy time of ``/proc/stat`` minus this run's children's CPU time, over the wall time: "foreign
+load").  A sample of the interleaved default build during which the foreign load exceeded
+``--quiet-below`` is discarded and taken again (at most ``--retries`` times); the report lists every
+sample with its foreign load, the discarded ones too.  ``--quiet-below 0`` turns the gate off.
+
 Run: ``python bench/bench_build.py [--pmax 15 51 101 201] [--one-process-max 101] [--baseline REV]
 [--baseline-pmax 15 51] [--repeat 5]`` (about 20 minutes with the defaults on the 2-core machine, plus the
 baseline's builds; pmax 201 is built on all cores only); writes ``bench/results/build.md`` and ``.json``.
@@ -30,6 +37,7 @@ import os
 import platform
 import re
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -48,6 +56,39 @@ ESTIMATE = re.compile(r"build: (\d+) s so far, about (\d+) s left")
 PER_P = re.compile(r"^p = (\d+):")
 
 
+GATE = {"below": 0.15, "max_wait": 600.0}   # set from the command line (main)
+
+
+def _busy_seconds() -> float | None:
+    """CPU seconds the whole machine has been busy since boot (``/proc/stat``), None where unknown."""
+    try:
+        with open("/proc/stat", encoding="ascii") as handle:
+            fields = [int(x) for x in handle.readline().split()[1:]]
+    except (OSError, ValueError):
+        return None
+    idle = fields[3] + (fields[4] if len(fields) > 4 else 0)      # idle + iowait
+    return (sum(fields[:8]) - idle) / os.sysconf("SC_CLK_TCK")
+
+
+def _children_seconds() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def wait_for_quiet() -> float:
+    """Wait until the machine's other processes used less than ``GATE['below']`` cores over 3 s (at most
+    ``GATE['max_wait']`` seconds); returns the seconds waited."""
+    if not GATE["below"] or _busy_seconds() is None:
+        return 0.0
+    start = time.perf_counter()
+    while time.perf_counter() - start < GATE["max_wait"]:
+        before = _busy_seconds()
+        time.sleep(3.0)
+        if (_busy_seconds() - before) / 3.0 < GATE["below"]:
+            break
+    return time.perf_counter() - start
+
+
 def build(pmax: int, jobs: int | None, out: Path, cache: Path | None = None, root: Path = ROOT) -> dict:
     """One build in a subprocess: cold with ``--no-cache`` (cache None) or with the cache in ``cache``;
     ``root`` another checkout (the baseline), run with its own packages first on the path."""
@@ -59,10 +100,14 @@ def build(pmax: int, jobs: int | None, out: Path, cache: Path | None = None, roo
     if cache is not None:
         env["SUSLOV_CACHE_DIR"] = str(cache)
         env.pop("SUSLOV_NO_CACHE", None)
+    waited = wait_for_quiet()
     before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    busy, ours = _busy_seconds(), _children_seconds()
     start = time.perf_counter()
     proc = subprocess.run(command, capture_output=True, text=True, cwd=root, env=env)
     wall = time.perf_counter() - start
+    # what the other processes used meanwhile, in cores (the busy time not spent by this run's children)
+    foreign = None if busy is None else max(0.0, (_busy_seconds() - busy) - (_children_seconds() - ours)) / wall
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} failed:\n{proc.stderr[-2000:]}")
     peak = max(before, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
@@ -70,11 +115,29 @@ def build(pmax: int, jobs: int | None, out: Path, cache: Path | None = None, roo
     # the progress lines' calibrated estimate of the whole build ("so far" + "left"), as a share of the wall time
     estimates = [round((float(a) + float(b)) / wall, 3) for a, b in ESTIMATE.findall(proc.stderr)]
     return {"pmax": pmax, "jobs": jobs or "all cores", "wall_seconds": wall, "peak_rss_mib": peak / 1024,
-            "derivations": derivations, "estimate_over_wall": estimates}
+            "derivations": derivations, "estimate_over_wall": estimates, "foreign_load": foreign,
+            "waited_seconds": waited}
+
+
+def quiet_build(pmax: int, jobs: int | None, out: Path, root: Path, retries: int, discarded: list) -> dict:
+    """:func:`build`, taken again (at most ``retries`` times) while other processes loaded the machine by more
+    than ``GATE['below']`` cores during it; the discarded runs are appended to ``discarded``."""
+    for attempt in range(retries + 1):
+        run = build(pmax, jobs, out, root=root)
+        noisy = GATE["below"] and run["foreign_load"] is not None and run["foreign_load"] > GATE["below"]
+        if not noisy or attempt == retries:
+            return run
+        discarded.append({"root": "baseline" if root != ROOT else "this revision", "wall_seconds": run["wall_seconds"],
+                          "foreign_load": run["foreign_load"]})
+        print(f"  discarded: {run['wall_seconds']:.1f} s with {run['foreign_load']:.2f} cores of other load",
+              file=sys.stderr)
+        shutil.rmtree(out, ignore_errors=True)
+    return run
 
 
 def verify_seconds(tree: Path, root: Path = ROOT) -> float:
     """Wall seconds of ``build_formulas.py --verify tree`` with ``root``'s sources (it must pass)."""
+    wait_for_quiet()
     start = time.perf_counter()
     proc = subprocess.run([sys.executable, str(root / "build_formulas.py"), "--verify", str(tree), "--quiet"],
                           capture_output=True, text=True, cwd=root, env=dict(os.environ, PYTHONPATH=str(root)))
@@ -83,15 +146,21 @@ def verify_seconds(tree: Path, root: Path = ROOT) -> float:
     return time.perf_counter() - start
 
 
-def interleaved(repeat: int, tmp: Path, tree: Path | None) -> dict:
+def interleaved(repeat: int, tmp: Path, tree: Path | None, retries: int = 3) -> dict:
     """The default cold build (all cores) ``repeat`` times, alternating with the baseline's (``tree``), then
-    ``--verify`` of each output ``repeat`` times: every sample and the medians."""
+    ``--verify`` of each output ``repeat`` times: every sample and the medians (a sample taken under other
+    load is discarded and taken again, :func:`quiet_build`)."""
     pmax = 15
     ours, base, verify_ours, verify_base = [], [], [], []
+    load_ours, load_base, discarded = [], [], []
     for i in range(repeat):
-        ours.append(build(pmax, None, tmp / f"ours-{i}")["wall_seconds"])
+        run = quiet_build(pmax, None, tmp / f"ours-{i}", ROOT, retries, discarded)
+        ours.append(run["wall_seconds"])
+        load_ours.append(run["foreign_load"])
         if tree is not None:
-            base.append(build(pmax, None, tmp / f"base-{i}", root=tree)["wall_seconds"])
+            run = quiet_build(pmax, None, tmp / f"base-{i}", tree, retries, discarded)
+            base.append(run["wall_seconds"])
+            load_base.append(run["foreign_load"])
         print(f"default cold build {i + 1}/{repeat}: {ours[-1]:.1f} s" + (f", baseline {base[-1]:.1f} s" if base else ""),
               file=sys.stderr)
     for i in range(repeat):
@@ -104,7 +173,8 @@ def interleaved(repeat: int, tmp: Path, tree: Path | None) -> dict:
     median = lambda xs: statistics.median(xs) if xs else None  # noqa: E731
     return {"pmax": pmax, "ours": ours, "baseline": base, "verify_ours": verify_ours, "verify_baseline": verify_base,
             "median_ours": median(ours), "median_baseline": median(base), "median_verify_ours": median(verify_ours),
-            "median_verify_baseline": median(verify_base)}
+            "median_verify_baseline": median(verify_base), "foreign_load_ours": load_ours,
+            "foreign_load_baseline": load_base, "discarded": discarded, "quiet_below": GATE["below"]}
 
 
 def per_p_costs(out: Path) -> dict:
@@ -161,20 +231,22 @@ def growth(costs: dict) -> dict:
 def report(data: dict) -> str:
     names = sorted({n for r in data["runs"] for n in r["derivations"]},
                    key=lambda n: -max(r["derivations"].get(n, 0) for r in data["runs"]))
-    head = "| pmax | jobs | wall (s) | warm rebuild (s) | peak RSS (MiB) | " + " | ".join(names) + " |"
+    head = ("| pmax | jobs | wall (s) | warm rebuild (s) | peak RSS (MiB) | " + " | ".join(names)
+            + " | other load (cores) |")
     lines = ["# What the build costs as pmax grows", "",
              f"Machine: {data['machine']}, Python {data['python']}, 2 cores (shared). Command: "
              "`python bench/bench_build.py`. Seconds per derivation as the build reports them (the round trip of "
              "the emitted module and rendering make up the rest of the wall time). Cold builds (`--no-cache`); a "
              "rebuild with nothing changed (same command again, cache filled by the all-cores run) is the warm "
              "column.", "",
-             head, "|" + " --- |" * (5 + len(names))]
+             head, "|" + " --- |" * (6 + len(names))]
     for r in data["runs"]:
         cells = [f"{r['derivations'].get(n, 0):.1f}" for n in names]
         warm = data.get("warm", {}).get(r["pmax"]) if r["jobs"] != 1 else None
         warm = f"{warm:.1f}" if warm is not None else ""
+        load = "" if r.get("foreign_load") is None else f"{r['foreign_load']:.2f}"
         lines.append(f"| {r['pmax']} | {r['jobs']} | {r['wall_seconds']:.1f} | {warm} | {r['peak_rss_mib']:.0f} | "
-                     + " | ".join(cells) + " |")
+                     + " | ".join(cells) + f" | {load} |")
     paired = data.get("interleaved")
     if paired:
         base_rev = (data.get("baseline") or {}).get("revision")
@@ -192,6 +264,15 @@ def report(data: dict) -> str:
         lines += ["", "Samples (s): this revision " + ", ".join(f"{x:.1f}" for x in paired["ours"])
                   + ("; baseline " + ", ".join(f"{x:.1f}" for x in paired["baseline"]) if paired["baseline"] else "")
                   + "; --verify " + ", ".join(f"{x:.1f}" for x in paired["verify_ours"]) + "."]
+        if paired.get("foreign_load_ours"):
+            def cores(xs):
+                return ", ".join("?" if x is None else f"{x:.2f}" for x in xs)
+            lines += ["", f"Other processes' load during each sample (cores, from `/proc/stat`; a sample above "
+                      f"{paired['quiet_below']:.2f} is discarded and taken again): this revision "
+                      f"{cores(paired['foreign_load_ours'])}"
+                      + (f"; baseline {cores(paired['foreign_load_baseline'])}" if paired["foreign_load_baseline"] else "")
+                      + ". Discarded: " + (", ".join(f"{d['root']} {d['wall_seconds']:.1f} s at {d['foreign_load']:.2f}"
+                                                     for d in paired["discarded"]) or "none") + "."]
     if data.get("baseline"):
         base = data["baseline"]
         ours = {r["pmax"]: r["wall_seconds"] for r in data["runs"] if r["jobs"] != 1}
@@ -264,14 +345,21 @@ def main(argv=None):
     ap.add_argument("--baseline-pmax", type=int, nargs="+", default=[15, 51])
     ap.add_argument("--repeat", type=int, default=0, help="time the default cold build this many times first, "
                     "alternating with the baseline's, and --verify of each tree (medians)")
+    ap.add_argument("--quiet-below", type=float, default=GATE["below"], metavar="CORES",
+                    help="before each timed build wait until other processes use fewer cores than this; a repeated "
+                         "sample under more is taken again (0: no gate)")
+    ap.add_argument("--max-wait", type=float, default=GATE["max_wait"], metavar="S",
+                    help="wait at most this long for the machine to be quiet before each build")
+    ap.add_argument("--retries", type=int, default=3, help="how often a sample under other load is taken again")
     args = ap.parse_args(argv)
+    GATE.update(below=args.quiet_below, max_wait=args.max_wait)
     runs, warm, paired = [], {}, None
     with tempfile.TemporaryDirectory() as tmp:
         if args.repeat and args.baseline:
             with worktree(args.baseline, Path(tmp) / "paired-baseline") as tree:
-                paired = interleaved(args.repeat, Path(tmp), tree)
+                paired = interleaved(args.repeat, Path(tmp), tree, args.retries)
         elif args.repeat:
-            paired = interleaved(args.repeat, Path(tmp), None)
+            paired = interleaved(args.repeat, Path(tmp), None, args.retries)
         for pmax in args.pmax:
             if pmax <= args.one_process_max:
                 runs.append(build(pmax, 1, Path(tmp) / f"p{pmax}-1"))   # the old way: one process, cold

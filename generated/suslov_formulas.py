@@ -139,7 +139,7 @@ def _scattering_angle(ctx, x, s, c):
 def _gauss_invariants(ctx, I11, I22, I13, I23):
     """(U^2, a, b, c2) of a body: w_-^2 = a + i b = (u - i v).(u - i v), U^2 = u.u, c2 = (u x v)_3^2.
 
-    Emitted from the certified expression; certificates: gauss:349, gauss:350.
+    Emitted from the certified expression; certificates: gauss:346, gauss:347.
     """
     r = ctx.sqrt(I11)*ctx.sqrt(I22)
     return ((I11*I11)*(I22*I22)*((I13*I13) + (I23*I23))/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), I11*I22*(I11 - I22)*(-I11*(I23*I23) + (I13*I13)*I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), -2*I11*I13*I22*I23*r*(I11 - I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)), (I11*I11*I11)*(I22*I22*I22)/((I11*(I23*I23) + (I13*I13)*I22)*(I11*(I23*I23) + (I13*I13)*I22)))
@@ -148,7 +148,7 @@ def _gauss_invariants(ctx, I11, I22, I13, I23):
 def _general_angle(ctx, h, g, s, c):
     """Delta psi of any body from h = pi U/2, g = pi (U - X)/2, s = |sin(pi Y/2)|, c = |cos(pi Y/2)| (w_- = X + i Y; evaluation form).
 
-    Emitted from the certified expression; certificates: general_angle:356, general_angle:355, general_angle:353, general_angle:361.
+    Emitted from the certified expression; certificates: general_angle:353, general_angle:352, general_angle:350, general_angle:358.
     """
     return 2*ctx.atan2(ctx.sqrt(ctx.expm1(-2*g)*ctx.expm1(2*g - 4*h)/(ctx.expm1(-2*h)*ctx.expm1(-2*h)))*ctx.sqrt((s*s)*(ctx.sech(h)*ctx.sech(h)) + (ctx.tanh(h)*ctx.tanh(h))), ctx.sqrt((c*c)*(ctx.sech(h)*ctx.sech(h)) + ((s*s)*(ctx.sech(h)*ctx.sech(h)) + (ctx.tanh(h)*ctx.tanh(h)))*ctx.exp(-2*g)*(ctx.expm1(2*g - 2*h)*ctx.expm1(2*g - 2*h))/(ctx.expm1(-2*h)*ctx.expm1(-2*h))))
 

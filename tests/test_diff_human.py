@@ -214,7 +214,10 @@ def test_a_real_revision_reads_without_program_text(tmp_path):
     assert result.certificates["reworded"]
     assert [(a["claim"], b["claim"]) for a, b in result.certificates["reworded"] if same_meaning(a["claim"], b["claim"])
             ] == []
-    assert not any("i*pi*(1/2)" in a["claim"] for a, _ in result.certificates["reworded"])
+    # the printer noise of the referee's report (i*pi*(1/2) -> pi*i/2) is counted as reprinted; a claim whose words
+    # really changed since (the default tier of the ball checks) may still be reworded with the old print in it
+    assert any("i*pi*(1/2)" in a.get("claim", "") for kind, a, _ in result.reprinted if kind == "certificate")
+    assert all(meaning(a["claim"]) != meaning(b["claim"]) for a, b in result.certificates["reworded"])
     assert len(result.reprinted) >= 30 and "reprinted without change of meaning" in text
     for a, b in result.errata["changed"]:
         if "note" in diff.erratum_fields(a, b):

@@ -10,7 +10,7 @@ BALL_CHECKS = ("default", "full")
 @dataclass(frozen=True)
 class BuildOptions:
     """``pmax``: largest p for the per-p tables (both parities up to it); ``ball_checks``: how many
-    seeded bodies corroborate the general angle's analytic step (part of what the build yields).
+    bodies and points the ball checks that corroborate exact results run on (part of what the build yields).
 
     ``jobs`` (local worker processes for the per-p certificates; None: all cores, 1: none) and
     ``scheduler`` (a dask.distributed address) choose how the work runs, and ``cache`` whether
@@ -19,8 +19,10 @@ class BuildOptions:
     """
 
     pmax: int = 15
-    # the analytic step of the general angle's connection, corroborated on seeded bodies
-    # (derivations.sections.general_angle.BALL_TIERS): "default" on a few bodies, "full" on all twenty
+    # the ball checks that corroborate exact results, "default" on a few bodies or points, "full" on all: the general
+    # angle's connection on seeded bodies (derivations.sections.general_angle.BALL_TIERS), the monodromy of the
+    # representative bodies (fuchsian.BODY_TIERS), the scattering angle's enclosed grid and fast-rotation column
+    # (scattering_balls.GRIDS, scattering_evidence.COLUMNS); the certificates say which ran
     ball_checks: str = "default"
     jobs: int | None = field(default=None, compare=False)
     scheduler: str | None = field(default=None, compare=False)

@@ -76,6 +76,22 @@ _STATEMENTS = {
     "ssec:spec": "Section 4", "sec:solhyper": "Section 5.1", "mer_sol": "Section 6",
 }
 
+# the project's names of four statements before issue 46, and the printed names its labels use now
+RENAMED = {"Theorem 3.1": "Theorem 3.2", "Theorem 5.2": "Theorem 5.4", "Proposition 5.4": "Proposition 5.8",
+           "Conjecture 5.2": "Conjecture 1"}
+_RENAMED = re.compile(r"\b(%s)\b" % "|".join(re.escape(k) for k in RENAMED))
+
+
+def current_names(text: str) -> str:
+    """``text`` (a label field, a claim, a note of an older tree) with the statements' old names replaced by the
+    printed ones (``Theorem 5.2`` -> ``Theorem 5.4``): what ``--diff`` compares an old tree's texts in.
+
+    >>> current_names("Theorem 5.2 (p), eq:o12"), current_names("as in Theorem 5.4")
+    ('Theorem 5.4 (p), eq:o12', 'as in Theorem 5.4')
+    """
+    return _RENAMED.sub(lambda m: RENAMED[m.group(1)], text)
+
+
 # the statements in the words the project's label fields use, and the printed statement each means
 _NAMES = {
     "Remark 2.1": "Remark 2.1", "Problem 3.1": "Problem 3.1",

@@ -44,11 +44,16 @@ class CatalogError(ValueError):
     """A formula the catalog cannot carry exactly (it would not round-trip through ``srepr``)."""
 
 
+# srepr is Python source of SymPy constructors: evaluated in SymPy's namespace it is what sympify(srepr) builds,
+# without sympify's tokenizer passes (0.57 s instead of 0.96 s for every formula of the default build)
+_SYMPY = {name: getattr(sp, name) for name in dir(sp) if not name.startswith("_")}
+
+
 def serialised(expr, where: str) -> str:
-    """``srepr(expr)``, checked to read back to an equal object with ``sympy.sympify``."""
+    """``srepr(expr)``, checked to read back to an equal object (SymPy's constructors, evaluated)."""
     text = sp.srepr(expr)
     try:
-        back = sp.sympify(text)
+        back = eval(text, {"__builtins__": {}}, _SYMPY)   # noqa: S307 - our own srepr of our own formula
     except Exception as error:   # noqa: BLE001 - any failure to read back is the same fault
         raise CatalogError(f"{where}: its SymPy form does not read back from srepr ({error})") from error
     if back != expr:

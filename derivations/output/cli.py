@@ -108,10 +108,11 @@ def parser() -> argparse.ArgumentParser:
                          "without rebuilding: list changed formulas, tables, certificates, errata (in Unicode) and "
                          "write a latexdiff PDF of the formulas document into build/diff/ (needs latexdiff)")
     ap.add_argument("--ball-checks", choices=BALL_CHECKS, default=BuildOptions().ball_checks,
-                    help="how many seeded bodies corroborate the analytic step of the general scattering angle "
-                         "(complex-path monodromy and ss enclosures in balls): 'default' the first 2 traces, 4 "
-                         "angles and 1 deep angle at 30 digits (seconds), 'full' all 20 bodies at 100 digits (about 25 s more "
-                         "on one core); the certificates say which")
+                    help="how many bodies and points the numeric corroborations run on: the general angle's seeded "
+                         "bodies (complex-path monodromy, ss enclosures in balls), the ball monodromy of the "
+                         "representative bodies and the scattering enclosure points; 'default' a few of each (seconds), "
+                         "'full' all of them (20 seeded bodies at 100 digits, 7 bodies, 18 points: about 30 s more on "
+                         "one core); the certificates say which")
     ap.add_argument("--jobs", type=_jobs, default=None, metavar="N",
                     help="worker processes for the per-p certificates (default: all cores; 1: none); the outputs "
                          "are identical whatever N")

@@ -45,6 +45,7 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from derivations.core.paper_numbers import current_names
 from derivations.output.diff_latex import latex_text
 from derivations.output.diff_text import changed_words, meaning, render, same_meaning, wrap
 
@@ -196,6 +197,7 @@ def compare(old: Path, new: Path) -> TreeDiff:
             ops = list(difflib.ndiff(a, b))
             result.tables.append((name, sum(o.startswith("+ ") for o in ops), sum(o.startswith("- ") for o in ops)))
     docs = [json.loads(_read(d, "certificates.json") or "{}") for d in (old, new)]
+    docs[0] = _current_names(docs[0])
     _compare_certificates(result, *(d.get("certificates", []) for d in docs))
     e_old, e_new = ({e["label"]: e for e in d.get("errata", [])} for d in docs)
     result.errata["added"] = [e_new[k] for k in e_new if k not in e_old]
@@ -206,6 +208,16 @@ def compare(old: Path, new: Path) -> TreeDiff:
         elif e_old[k].get("note") != e_new[k].get("note"):
             result.reprinted.append(("erratum", e_old[k], e_new[k]))
     return result
+
+
+def _current_names(document: dict) -> dict:
+    """An older tree's certificates and errata with the statements' old names replaced by the printed ones
+    (issue 46 renamed four: ``Theorem 5.2`` is ``Theorem 5.4``), so that a renamed label is not a change."""
+    def renamed(record: dict) -> dict:
+        return {k: current_names(v) if isinstance(v, str) else v for k, v in record.items()}
+
+    return {**document, "certificates": [renamed(c) for c in document.get("certificates", [])],
+            "errata": [renamed(e) for e in document.get("errata", [])]}
 
 
 def _same_result(a: dict, b: dict) -> bool:

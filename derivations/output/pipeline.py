@@ -31,7 +31,8 @@ from derivations.core.certificates import CertificateLog, Outcome
 from derivations.core.statement import say, text
 from derivations.core.emit import emitted_formulas
 from derivations.core.options import BuildOptions
-from derivations.output import catalog_data, public_api
+from derivations.core.notation import index_rows
+from derivations.output import catalog_data, figures, public_api
 from derivations.output.pdf import is_byproduct
 from derivations.output.render import render
 from derivations.registry import DERIVATIONS, resolve
@@ -51,6 +52,8 @@ OUTPUTS = (
     ("suslov-preamble.tex.j2", "suslov-preamble.tex", ()),
     ("suslov_formulas.tex.j2", "suslov_formulas.tex", ()),
     ("formulas_body.tex.j2", "formulas_body.tex", ()),
+    ("notation.tex.j2", "notation.tex", ()),
+    ("figures.tex.j2", "figures.tex", figures.NEEDS),
     ("certificates.tex.j2", "certificates.tex", ()),
     ("certificates_table.tex.j2", "certificates_table.tex", ()),
     ("errata_table.tex.j2", "errata_table.tex", ()),
@@ -72,6 +75,7 @@ class Build:
     results: dict = field(default_factory=dict)
     seconds: dict = field(default_factory=dict)
     round_trip_done: bool = False
+    catalog_json: str | None = None   # generated/catalog.json, made (and its srepr checked) once per build
 
 
 def time_left(elapsed: float, done: int, total: int, elapsed_at_half: float | None = None) -> float | None:
@@ -187,6 +191,7 @@ def context(build: Build) -> dict:
     results = [build.results[name] for name in build.names]
     errata = [e for r in results for e in r.errata]
     by_key = {c["key"]: c for c in certificates}
+    numbers = {f.key: n for n, f in enumerate((f for r in results for f in r.formulas), 1)}
     return {
         "pmax": build.options.pmax,
         "odd_ps": build.options.odd_p_values(),
@@ -229,6 +234,11 @@ def context(build: Build) -> dict:
         "formula_numbers": {f.key: n for n, f in enumerate((f for r in results for f in r.formulas), 1)},
         "cited_by": {c["key"]: [(f.key, n) for n, f in enumerate((f for r in results for f in r.formulas), 1)
                                 if c["key"] in f.certificates] for c in certificates},
+        # the notation index (derivations.core.notation) and the figures (derivations.output.figures; None when
+        # the build lacks what they draw)
+        "notation": index_rows([f for r in results for f in r.formulas], numbers),
+        "figures": figures.figures(emitted_formulas(build), {f.key: f for r in results for f in r.formulas})
+        if all(n in build.results for n in figures.NEEDS) else None,
     }
 
 
@@ -255,7 +265,9 @@ def render_into(build: Build, directory: Path, only: tuple[str, ...] | None = No
             written.append(filename)
     (directory / "certificates.json").write_text(
         json.dumps(certificate_document(build, ctx), indent=1, sort_keys=True) + "\n", encoding="utf-8")
-    (directory / catalog_data.FILENAME).write_text(catalog_data.catalog_text(build, ctx["titles"]), encoding="utf-8")
+    if build.catalog_json is None:   # the srepr round trip of every formula: once per build, not per render
+        build.catalog_json = catalog_data.catalog_text(build, ctx["titles"])
+    (directory / catalog_data.FILENAME).write_text(build.catalog_json, encoding="utf-8")
     (directory / "certificate_costs.json").write_text(
         json.dumps({k: round(s, 6) for k, _, s in ctx["costs"]}, indent=1, sort_keys=True) + "\n",
         encoding="utf-8")
@@ -264,8 +276,8 @@ def render_into(build: Build, directory: Path, only: tuple[str, ...] | None = No
         + "\n", encoding="utf-8")
     (directory / "cache_report.json").write_text(
         json.dumps(build.log.cache_report, indent=1, sort_keys=True) + "\n", encoding="utf-8")
-    return written + ["certificates.json", catalog_data.FILENAME, "certificate_costs.json", "certificate_measurements.json",
-                      "cache_report.json"]
+    return written + ["certificates.json", catalog_data.FILENAME, "certificate_costs.json",
+                      "certificate_measurements.json", "cache_report.json"]
 
 
 def write_manifest(directory: Path) -> Path:
@@ -294,7 +306,7 @@ def claim_output(target: Path) -> Path:
             lines = (directory / manifest.MANIFEST).read_text(encoding="utf-8").splitlines()
             names = {line.partition("  ")[2] for line in lines if "  " in line} - {""}
         except (OSError, UnicodeDecodeError):
-            names = {filename for _, filename, _ in OUTPUTS} | {BUILD_SIGNATURE}
+            names = {filename for _, filename, _ in OUTPUTS} | {BUILD_SIGNATURE, catalog_data.FILENAME}
         names |= {manifest.MANIFEST, *VOLATILE}
         for entry in directory.iterdir():
             if entry.is_file() and is_byproduct(entry.name):

@@ -16,7 +16,10 @@ monodromy group".  Method:
 3. *Monodromy and Galois group (balls).*  ``suslov.kernel.monodromy`` (its docstring names the
    theorem behind each step: Schlesinger, the classification of algebraic subgroups of SL(2, C),
    Kolchin) computes the monodromy matrices of representative bodies as python-flint balls and
-   certifies the verdict; pass / fail / unknown as every ball certificate, never a wrong pass.
+   certifies the verdict; pass / fail / unknown as every ball certificate, never a wrong pass.  Which bodies:
+   the build option ``ball_checks`` (``BODY_TIERS``): one of each kind at 20 digits by default, all seven at
+   30 with ``--ball-checks full``; the Galois group and the local behaviour of every body are decided
+   exactly (``general_galois``, ``pole_theorem``), the balls corroborate them.
    The verdicts are checked against the exact local analysis (``derivations.sections.residue``):
    trivial local monodromy exactly for odd p (also on the mirror axis I23 = 0, through the certified
    symmetry eq:lina).
@@ -28,6 +31,8 @@ monodromy group".  Method:
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import sympy as sp
 
 from derivations.core import paper
@@ -38,7 +43,7 @@ from derivations.core.exact import Domain, Extension, certify_zero
 from derivations.core.result import DerivationResult
 from derivations.core.statement import tex
 from derivations.core.symbols import I11, I13, I22, I23, p, w1, w2
-from derivations.sections.fuchsian_balls import DIGITS, monodromy_summary
+from derivations.sections.fuchsian_balls import monodromy_summary
 from derivations.sections.model import R_EXT
 
 NAME = "fuchsian"
@@ -55,8 +60,53 @@ BODIES = (("odd $p = 1$", "2", "1", "0", "-1"), ("odd $p = 3$", "2", "1", "0", "
           ("general", "2", "1", "3/10", "-1/5"), ("odd $p = 1$, $I23 = 0$ (eq:lina)", "1", "2", "-1", "0"))
 
 
-# the monodromy of the representative bodies needs no other result: started with the build (CertificateLog.prefetch)
-PREFETCH = (("monodromy of representative bodies", [tuple(body) for _, *body in BODIES], monodromy_summary),)
+@dataclass(frozen=True)
+class BodyTier:
+    """Which of :data:`BODIES` the ball monodromy runs on (their indices), and at how many digits."""
+
+    bodies: tuple
+    digits: int
+
+
+# The Galois group and the local behaviour at the poles of every body are decided exactly (general_galois: Kimura;
+# pole_theorem); the ball monodromy corroborates them.  "default" (issue 43) runs one body of each kind the agreement
+# certificates compare -- odd, even and non-integer p with I13 = 0, a general body -- at 20 digits (about 1.2 s of
+# ball work instead of 2.9 s); "full" all seven at 30 (build_formulas.py --ball-checks full;
+# tests/test_fuchsian_tiers.py runs them without a build in every CI run).
+BODY_TIERS = {"default": BodyTier((0, 2, 3, 4), 20), "full": BodyTier(tuple(range(len(BODIES))), 30)}
+LABEL = "monodromy of representative bodies"
+
+
+def tier_bodies(tier: str) -> list:
+    """The (case, I11, I22, I13, I23) of :data:`BODIES` that the ball checks ``tier`` run, in their order."""
+    return [BODIES[i] for i in BODY_TIERS[tier].bodies]
+
+
+def ball_jobs(tier: str) -> list:
+    """The worker items ``((I11, I22, I13, I23), digits)`` of the ball checks ``tier``."""
+    return [(tuple(body), BODY_TIERS[tier].digits) for _, *body in tier_bodies(tier)]
+
+
+def PREFETCH(options) -> tuple:
+    """The monodromy of the options' representative bodies needs no other result: started with the build
+    (CertificateLog.prefetch)."""
+    return ((LABEL, ball_jobs(options.ball_checks), monodromy_summary),)
+
+
+def bodies_words(tier: str) -> str:
+    """Which bodies the ball checks ``tier`` run, for the claims: their number, their kinds and the set."""
+    cases = [case for case, *_ in tier_bodies(tier)]
+    kinds = [words for start, words in (("odd", "odd"), ("even", "even"), ("non-integer", "non-integer"))
+             if any(c.startswith(start) for c in cases)]
+    text = f"{', '.join(kinds[:-1])} and {kinds[-1]} $p$" if len(kinds) > 1 else f"{kinds[0]} $p$"
+    if any("I23 = 0" in c for c in cases):
+        text += ", $I23 = 0$"
+    general = sum(c == "general" for c in cases)
+    text += ", " + ("a general body" if general == 1 else f"{general} general bodies")
+    if tier == "full":
+        return f"the {len(cases)} representative bodies of the full ball checks ({text})"
+    return (f"the {len(cases)} representative bodies of the default ball checks ({text}, {BODY_TIERS[tier].digits} digits; "
+            f"the full ones run all {len(BODIES)} at {BODY_TIERS['full'].digits} digits)")
 
 
 # the tests of suslov.kernel.monodromy and suslov.validated, named for the certificates' details (their own
@@ -165,8 +215,10 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
                                r"$=-p^2$: for $I_{13}=0$, $p^2=I_{22}(I_{11}-I_{22})/I_{23}^2$"])
 
     logarithms = {row["p"]: row["verdict"] for row in residue_result.exports["log_rows"]}
+    tier = BODY_TIERS[options.ball_checks]
+    bodies = tier_bodies(options.ball_checks)
     rows, verdict_certs, summaries = [], [], {}
-    for (case, *body), summary in zip(BODIES, log.map_per_p(*PREFETCH[0])):
+    for (case, *body), summary in zip(bodies, log.map_per_p(*PREFETCH(options)[0])):
         summaries[case] = summary
         claim = (f"body $(I11, I22, I13, I23) = ({', '.join(body)})$, {case}: the differential Galois group of eq:whole is "
                  + ("$SO(3, C)$ (isomorphic to $PSL(2, C)$): no Liouvillian solutions" if summary["verdict"] == "SO(3,C)" else
@@ -174,21 +226,24 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
         outcome = {"SO(3,C)": Outcome.PASS, "reducible": Outcome.PASS}.get(summary["verdict"], Outcome.UNKNOWN)
         detail = "; ".join(f"{_test_name(text)}: {outcome_}" for text, outcome_, _ in summary["certificates"])
         cert = log.record(Certificate(claim, "Conclusion", "ball enclosure (`python-flint` `acb`): validated Taylor steps "
-                                      f"with majorant bounds along loops in $x = e^t$, ${DIGITS}$ digits",
+                                      f"with majorant bounds along loops in $x = e^t$, ${tier.digits}$ digits",
                                       outcome, summary["seconds"], len(summary["certificates"]), detail[:400]))
         verdict_certs.append(cert)
         rows.append({"case": case, "body": body, "verdict": summary["verdict"], "liouvillian": summary["liouvillian"],
                      "radius": summary["radius"], "certificate": cert.key, "digits": summary["digits"],
                      "tests": "".join({"pass": "+", "fail": "-", "unknown": "?"}[outcome_]
                                       for _, outcome_, _ in summary["certificates"][:5]),
-                     "exponents": summary["exponents"], "not_identity_at_i": summary["not_identity_at_i"]})
+                     "exponents": summary["exponents"], "not_identity_at_i": summary["not_identity_at_i"],
+                     "ball_checks": options.ball_checks})
     # agreement with the exact local analysis: trivial local monodromy at the poles exactly for odd p
     agree = all((row["verdict"] == "reducible") == (row["case"].startswith("odd")) for row in rows)
     # (the p of the exact analysis this build ran: --pmax 1 or 2 has no row for p = 2 or 3)
     agree &= all((logarithms[p_] == "no logarithms") == (p_ % 2 == 1) for p_ in (1, 2, 3) if p_ in logarithms)
+    mirror = any("I23 = 0" in row["case"] for row in rows)
     c_agree = log.record(Certificate(
-        "the verdicts agree with the exact Frobenius analysis at $t0 = i pi/2$: reducible (Liouvillian) exactly for odd $p$ "
-        "($I13 = 0$, or $I23 = 0$ by eq:lina); even and non-integer $p$ and $I13 != 0$ give $SO(3, C)$", "Theorem 3.5",
+        f"on {bodies_words(options.ball_checks)}, the verdicts agree with the exact Frobenius analysis at $t0 = i pi/2$: "
+        "reducible (Liouvillian) exactly for odd $p$ " + ("($I13 = 0$, or $I23 = 0$ by eq:lina)" if mirror else "($I13 = 0$)")
+        + "; even and non-integer $p$ and $I13 != 0$ give $SO(3, C)$", "Theorem 3.5",
         "comparison of the ball verdicts with the exact logarithm verdicts", Outcome.PASS if agree else Outcome.FAIL,
         0.0, len(rows), ", ".join(f"{row['case']}: {_VERDICT_WORDS.get(row['verdict'], row['verdict'])}" for row in rows)))
     even = summaries[next(row for row in rows if row["case"].startswith("even"))["case"]]
@@ -202,7 +257,7 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
     c_meromorphic = log.record(Certificate(
         "for $I13 = 0$ and $p = 2$ every solution of eq:whole is meromorphic at $t0 = i pi/2$ (the local monodromy, the "
         "loop about $x = i$, is the identity)", "Conclusion",
-        f"ball enclosure (`python-flint` `acb`, {DIGITS} digits): an entry of $M(x=i) - I$ whose ball excludes 0 refutes it",
+        f"ball enclosure (`python-flint` `acb`, {tier.digits} digits): an entry of $M(x=i) - I$ whose ball excludes 0 refutes it",
         Outcome.FAIL if even["not_identity_at_i"] else Outcome.UNKNOWN, 0.0, 9,
         f"the real part of $tr(M(x=i))$ is {even['re_trace_at_i']} (unipotent), $M(x=i) != I$: a logarithm "
         "at $t0$, independently of the exact Frobenius recursion (residue)", expected=Outcome.FAIL))
@@ -220,5 +275,6 @@ def run(log: CertificateLog, options, model_result, residue_result) -> Derivatio
         "the Liouvillian part holds (the Galois group is $SO(3, C)$, certified from the monodromy); the meromorphy "
         "part does not: the exact Frobenius recursion finds logarithms for every even $p$, and for $p = 2$ the ball of "
         "the monodromy about $x = i$ excludes the identity", c_agree, c_wrong, c_meromorphic, *verdict_certs))
-    result.exports.update(rows=rows)
+    # which bodies ran, for the claims of the other cross-checks of these rows (pole_theorem, general_galois)
+    result.exports.update(rows=rows, bodies_words=bodies_words(options.ball_checks), ball_checks=options.ball_checks)
     return result

@@ -14,8 +14,6 @@ from flint import acb_mat
 
 from derivations.core.certificates import stopwatch
 
-DIGITS = 30
-
 
 def _math(value) -> str:
     """A ball's midpoint to 4 digits as LaTeX mathematics (python-flint prints ``1.000j``)."""
@@ -23,15 +21,16 @@ def _math(value) -> str:
     return text.replace("j", "i")
 
 
-def monodromy_summary(body: tuple) -> dict:
-    """The run-time :func:`suslov.validated.monodromy` of one body (I11, I22, I13, I23) at ``DIGITS``, as
-    plain data (balls do not pickle): verdict, certificates, the table's entries, and whether the loop
-    about x = i excludes the identity.  A top-level function: the build runs it in a worker process,
+def monodromy_summary(item: tuple) -> dict:
+    """The run-time :func:`suslov.validated.monodromy` of one body at ``digits``, ``item = ((I11, I22, I13, I23),
+    digits)``, as plain data (balls do not pickle): verdict, certificates, the table's entries, and whether the
+    loop about x = i excludes the identity.  A top-level function: the build runs it in a worker process,
     started before the symbolic derivations (``PREFETCH``)."""
     from suslov.validated import monodromy  # python-flint balls; the run-time code, exactly as users call it
 
+    body, digits = item
     with stopwatch() as elapsed:
-        mono = monodromy(*body, dps=DIGITS)
+        mono = monodromy(*body, dps=digits)
     identity = acb_mat([[1, 0, 0], [0, 1, 0], [0, 0, 1]])
     at_i = mono.matrices.get("x=i")
     return {"verdict": mono.verdict, "liouvillian": mono.liouvillian, "radius": mono.radius,

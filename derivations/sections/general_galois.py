@@ -100,8 +100,8 @@ def run(log: CertificateLog, options, gauss_result, fuchsian_result) -> Derivati
         if row["verdict"] in ("SO(3,C)", "reducible") and row["verdict"] != exact.group:
             disagreements.append(f"({', '.join(row['body'])}): balls {_group(row['verdict'])}, exact {_group(exact.group)}")
     c_agree = log.record(Certificate(
-        "the exact decision (Kimura) agrees with the ball verdicts of the complex-path monodromy on the representative "
-        "bodies (odd, even and non-integer $p$, $I23 = 0$, general bodies)", "Conclusion",
+        "the exact decision (Kimura) agrees with the ball verdicts of the complex-path monodromy on "
+        + fuchsian_result.exports["bodies_words"], "Conclusion",
         "comparison of the exact verdicts with the certified ball verdicts", Outcome.FAIL if disagreements else Outcome.PASS,
         0.0, len(rows), "; ".join(disagreements) or ", ".join(f"({', '.join(r['body'])}): {_group(r['verdict'])}" for r in rows)))
     keys = gauss_result.exports["certificates"]

@@ -227,8 +227,8 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
             disagree.append(f"({', '.join(row['body'])}): balls {'exclude' if row['not_identity_at_i'] else 'contain'} $I$, "
                             f"theorem {exact.kind}")
     c_ball_agree = log.record(Certificate(
-        "the theorem agrees with the ball monodromy about $x = i$ on the representative bodies (odd, even, non-integer $p$, "
-        "$I23 = 0$, general bodies): the ball of $M(x = i) - I$ excludes 0 exactly where a logarithm or a branch is predicted",
+        f"the theorem agrees with the ball monodromy about $x = i$ on {fuchsian_result.exports['bodies_words']}: "
+        "the ball of $M(x = i) - I$ excludes 0 exactly where a logarithm or a branch is predicted",
         "Theorem 3.2", "comparison with the certified ball enclosures (`fuchsian`)",
         Outcome.FAIL if disagree else Outcome.PASS, 0.0, len(ball_rows),
         "; ".join(disagree) or ", ".join(f"({', '.join(r['body'])}): {local_behaviour(*r['body']).kind}" for r in ball_rows)))

@@ -34,8 +34,10 @@ arithmetic from ``t = -oo`` to ``+oo`` (``suslov.kernel.enclosure``: limit serie
 remainders at the ends, Taylor steps with Cauchy bounds in between) on a grid of (p, d) with
 non-integer, odd and even p and d in {0.5, 2, 50}: G1(0) and cos(Delta psi) within 1e-18 of the closed
 form is *proved* at every point; the Gamma-function value and the lemma ``gam_0`` are enclosed too.
-The fast-rotation column d = 0.05 stays a 36-digit spot check (``derivations.sections.scattering_evidence``
+The fast-rotation column d = 0.05 stays an mpmath spot check (``derivations.sections.scattering_evidence``
 with ``poisson_taylor``: Frobenius series at the ends, Taylor steps in between), labelled evidence.
+The build option ``ball_checks`` chooses the points (issue 43): "default" one p of each kind (0.5, 1, 2),
+"full" all six (``--ball-checks full``; ``tests/test_scattering_tiers.py`` runs them without a build).
 
 Stable evaluation (emitted): with ``x = pi |p| / (2d)``, ``y = pi p / 2``,
 ``Delta psi = 2 atan2(sqrt(tanh^2 x + sin^2 y sech^2 x), |cos y| sech x)``
@@ -55,7 +57,7 @@ from derivations.core.result import DerivationResult
 from derivations.core.symbols import I11, I13, I22, I23, I33, d, g1, g2, g3, p, w1, w2
 from derivations.sections import scattering_balls
 from derivations.sections.model import I33_FROM_DET
-from derivations.sections.scattering_evidence import GRID_D, GRID_DIGITS, GRID_DPS, GRID_P, numeric_certificates
+from derivations.sections.scattering_evidence import COLUMNS, numeric_certificates
 from derivations.sections.special_case import CASE, D_POSITIVE, I_DOMAIN, P_REAL
 
 NAME = "scattering"
@@ -86,7 +88,14 @@ def _sin_pi(exp_i_pi_w):
     return (exp_i_pi_w - 1 / exp_i_pi_w) / (2 * I_UNIT)
 
 
-PREFETCH = (("scattering: numeric checks", ["enclosed grid", "fast rotation"], numeric_certificates),)
+LABEL = "scattering: numeric checks"
+
+
+def PREFETCH(options) -> tuple:
+    """The numeric checks of the options' set of ball checks (``scattering_balls.GRIDS``,
+    ``scattering_evidence.COLUMNS``), started with the build (they need no other result)."""
+    return ((LABEL, [("enclosed grid", options.ball_checks), ("fast rotation", options.ball_checks)],
+             numeric_certificates),)
 
 
 def run(log: CertificateLog, options, special_result) -> DerivationResult:
@@ -108,7 +117,7 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     c_s = certify_zero(log, "$s = beta1 + beta2 - alpha1 - alpha2 - alpha3 = -1/2$ (eq:param)", "eq:param",
                        sp.expand(sum(betas) - sum(alphas) + sp.Rational(1, 2)), Domain("Q(p,d)[i]"))
     c_gamma = scattering_balls.gamma_value(log)
-    enclosed, fast_rotation = log.map_per_p(*PREFETCH[0])
+    enclosed, fast_rotation = log.map_per_p(*PREFETCH(options)[0])
     c_grid_balls, c_lemma = (log.record(c) for c in enclosed)
     result.errata.append(erratum(paper.GAM_0, "confirmed", paper.GAM_0.latex,
                                  "enclosed: the validated solution with $to(gamma, -e1)$ as $to(t, -oo)$ at $t = -1.5$ against "
@@ -211,6 +220,9 @@ def run(log: CertificateLog, options, special_result) -> DerivationResult:
     emit = [Emitted("scattering_angle", (xs, ss, cs), (), (stable,),
                     (c_stable.key, c_grid_balls.key, c_route.key),
                     "Delta psi from x = pi |p|/(2d), s = |sin(pi p/2)|, c = |cos(pi p/2)| (Theorem 5.4, evaluation form).")]
-    result.exports.update(emit=emit, grid={"p": GRID_P, "d": GRID_D, "dps": GRID_DPS, "digits": GRID_DIGITS},
+    grid, column = scattering_balls.GRIDS[options.ball_checks], COLUMNS[options.ball_checks]
+    result.exports.update(emit=emit, grid={"p": column.p, "d": column.d, "dps": column.dps, "digits": column.digits,
+                                           "enclosed": {"p": grid.p, "d": grid.d, "digits": grid.digits,
+                                                        "tolerance": grid.tolerance}},
                           certificates={"angle": c_grid_balls.key, "stable": c_stable.key, "route": c_route.key})
     return result

@@ -16,11 +16,17 @@ instead of spot checks:
 
 A pass proves ``|difference| <= tolerance`` at every point; equality itself is the derivation's
 (the reflection formulas, the lemma), which enclosures cannot prove.  The fast-rotation column
-d = 0.05 of the grid (|omega| up to 70, about 5 s per point at this tolerance) stays a 36-digit
-spot check in ``scattering.py``, labelled evidence.
+d = 0.05 of the grid (|omega| up to 70, about 5 s per point at this tolerance) stays an mpmath
+spot check (``scattering_evidence``), labelled evidence.
+
+Which points (issue 43): the build option ``ball_checks`` (``GRIDS``).  "default" encloses one p of each
+kind (non-integer 0.5, odd 1, even 2) on every d, 9 points to the same 1e-18; "full"
+(``build_formulas.py --ball-checks full``, and ``tests/test_scattering_tiers.py`` in every CI run, without a
+build) all 18.  The claims name the points and the set that ran.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from fractions import Fraction
 
 from flint import acb, arb
@@ -30,11 +36,30 @@ from derivations.core.certificates import Certificate, CertificateLog
 from suslov.kernel.enclosure import ss_angle_enclosure
 
 GAMMA_POINTS = (("1/3", "1/2"), ("5/2", "7/10"), ("2", "1"), ("37/10", "1/5"), ("1/10", "5"), ("3", "3"))
-GRID_P = ("0.5", "1", "2", "2.5", "3", "7/3")
+GRID_P = ("0.5", "1", "2", "2.5", "3", "7/3")    # the full grid (--ball-checks full)
 GRID_D = ("0.5", "2", "50")
 GRID_DIGITS = 20                 # enclosure target; the claims' tolerance is 1e-18
 SERIES_START = 1.5               # t = -1.5: where the limit series hands over to the Taylor steps
 TOLERANCE = "1e-18"
+
+
+@dataclass(frozen=True)
+class Grid:
+    """The (p, d) points whose ss solution is enclosed, and the enclosures' digits and the claims' tolerance."""
+
+    p: tuple
+    d: tuple
+    digits: int = GRID_DIGITS
+    tolerance: str = TOLERANCE
+
+    def points(self) -> list:
+        return [(ps, ds) for ps in self.p for ds in self.d]
+
+
+# "default": one p of each kind (non-integer, odd, even) on every d: 9 of the 18 points, the same tolerance (the
+# closed form is derived exactly, steps 1-4 of scattering.py; the enclosures corroborate it); "full": the 18 points
+# (build_formulas.py --ball-checks full; tests/test_scattering_tiers.py runs them without a build)
+GRIDS = {"default": Grid(("0.5", "1", "2"), GRID_D), "full": Grid(GRID_P, GRID_D)}
 
 
 def exact(text: str) -> arb:
@@ -71,16 +96,23 @@ def gamma_value(log: CertificateLog) -> Certificate:
         prec=160, what="`acb.gamma` and `acb.rgamma`")
 
 
-def grid(log: CertificateLog) -> tuple[Certificate, Certificate]:
-    """(closed form vs validated integration on the grid, the lemma gam_0 at t = -S): two certificates."""
+def tier_words(tier: str) -> str:
+    """Which set of the ball checks ran, for the claims (``tier``: ``BuildOptions.ball_checks``)."""
+    return ("the full ball checks" if tier == "full" else
+            f"the default ball checks; the full ones add $p$ in {', '.join(p for p in GRID_P if p not in GRIDS['default'].p)}")
+
+
+def grid(log: CertificateLog, tier: str = "full") -> tuple[Certificate, Certificate]:
+    """(closed form vs validated integration on the grid of ``GRIDS[tier]``, the lemma gam_0 at t = -S): two
+    certificates whose claims name the points and the set of ball checks."""
+    chosen = GRIDS[tier]
     enclosures = {}
 
     def integrate(prec: int) -> dict:
-        for ps in GRID_P:
-            for ds in GRID_D:
-                u, v = omega_pd(exact(ps), exact(ds))
-                enclosures[ps, ds] = ss_angle_enclosure(u, v, digits=GRID_DIGITS, prec=prec,
-                                                         series_start=SERIES_START)
+        for ps, ds in chosen.points():
+            u, v = omega_pd(exact(ps), exact(ds))
+            enclosures[ps, ds] = ss_angle_enclosure(u, v, digits=chosen.digits, prec=prec,
+                                                     series_start=SERIES_START)
         return enclosures
 
     def against_closed_form(prec: int) -> list:
@@ -91,11 +123,12 @@ def grid(log: CertificateLog) -> tuple[Certificate, Certificate]:
             out += [e.gamma_at_zero[0] - g0, e.cos_angle - (2 * g0 * g0 - 1)]
         return out
 
-    points = f"{len(GRID_P) * len(GRID_D)} points: $p$ in {', '.join(GRID_P)}, $d$ in {', '.join(GRID_D)}"
+    points = (f"{len(chosen.points())} points: $p$ in {', '.join(chosen.p)}, $d$ in {', '.join(chosen.d)}: "
+              + tier_words(tier))
     c_grid = certify_enclosure(
         log, f"the solution with $to(gamma, -e1)$ as $to(t, -oo)$, enclosed from $t = -oo$ to $+oo$, has $G1(0) = -cos(pi p/2)/cosh(pi p/(2d))$ and $cos(Deltapsi) "
-        f"= 2 cos(pi p/2)^2/cosh(pi p/(2 d))^2 - 1$ to ${TOLERANCE}$ ({points})", "Theorem 5.4", against_closed_form,
-        arb(TOLERANCE), prec=int(3.33 * GRID_DIGITS + 40), doublings=1,
+        f"= 2 cos(pi p/2)^2/cosh(pi p/(2 d))^2 - 1$ to ${chosen.tolerance}$ ({points})", "Theorem 5.4", against_closed_form,
+        arb(chosen.tolerance), prec=int(3.33 * chosen.digits + 40), doublings=1,
         what="validated integration (limit series with majorant remainders + Taylor steps with Cauchy bounds, "
              "`suslov.kernel.enclosure`) against the closed form")
 
@@ -113,8 +146,8 @@ def grid(log: CertificateLog) -> tuple[Certificate, Certificate]:
 
     c_lemma = certify_enclosure(
         log, "gam_0: the solution with $to(gamma, -e1)$ as $to(t, -oo)$ has $G1 = -sqrt(1-z) hyper((1/2, (1+p)/2, (1-p)/2), (1/2 - i p/(2 d), 1/2 + i p/(2 d)), z)$, "
-        f"$z = sech(t)^2$, at $t = -{SERIES_START}$ to ${TOLERANCE}$ ({points})", "gam_0", lemma, arb(TOLERANCE),
-        prec=int(3.33 * GRID_DIGITS + 40), doublings=0,
+        f"$z = sech(t)^2$, at $t = -{SERIES_START}$ to ${chosen.tolerance}$ ({points})", "gam_0", lemma,
+        arb(chosen.tolerance), prec=int(3.33 * chosen.digits + 40), doublings=0,
         what="validated solution (limit series at $t = -oo$ with its remainder bound) against Arb's generalised "
              "hypergeometric function `acb.hypgeom`")
     return c_grid, c_lemma
