@@ -159,12 +159,23 @@ def test_cli_show_and_export(tmp_path):
     assert family.returncode == 2 and "--p" in family.stderr
     missing = subprocess.run(run + ["show", "nope"], cwd=ROOT, capture_output=True, text=True)
     assert missing.returncode == 2 and "no catalog entry 'nope'" in missing.stderr
+    done = subprocess.run(run + ["export", "--format", "mathematica", str(tmp_path / "wl")], cwd=ROOT,
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert set(done.stdout.split()) == {str(p) for p in (tmp_path / "wl").glob("*.wl")}
+    bad = subprocess.run(run + ["export", "--format", "maple", str(tmp_path / "wl" / "model.wl")], cwd=ROOT,
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and "not a directory" in bad.stderr
+
+
+def test_every_format_writes_one_file_per_section_and_family(tmp_path):
+    from suslov.catalog_files import export
+
     for fmt, ext in (("mathematica", "wl"), ("maple", "mpl"), ("json", "json"), ("latex", "tex")):
-        done = subprocess.run(run + ["export", "--format", fmt, str(tmp_path / fmt)], cwd=ROOT, capture_output=True,
-                              text=True)
-        assert done.returncode == 0, done.stderr
-        files = sorted((tmp_path / fmt).glob(f"*.{ext}"))
-        assert {f.stem for f in files} >= {"model", "special_case", "first_integrals"}
+        files = export(catalog, fmt, tmp_path / fmt, "test")
+        assert all(f.suffix == "." + ext for f in files)
+        assert {f.stem for f in files} == {e.section for e in catalog.entries()} | {"first_integrals"}
+        assert not list((tmp_path / fmt).glob(".*partial"))
 
 
 def test_mathematica_file_definitions_parse_back(tmp_path):

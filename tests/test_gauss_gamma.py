@@ -57,17 +57,17 @@ def odefun_reference(u, v, gamma0, t0, times, dps=45):
 
 @pytest.mark.parametrize("name", list(BODIES))
 def test_mpmath_route_agrees_with_taylor_integration_at_higher_precision(name):
-    """25 digits asked: agreement with odefun at 35 digits to 1e-24 at every time up to |t| = 10, |gamma| = 1
-    (docs/simulator.md: 30 digits asked agree with odefun at 45 to 2e-31)."""
+    """20 digits asked: agreement with odefun at 28 digits to 1e-19 at every time up to |t| = 10, |gamma| = 1
+    (docs/simulator.md: 30 digits asked agree with odefun at 45 to 2e-31; fewer digits here keep the suite short)."""
     body = BODIES[name]
     u, v = certified_uv(body)
-    reference = odefun_reference(u, v, GAMMA0, T0, TIMES, dps=35)
-    with mpmath.workdps(25):
+    reference = odefun_reference(u, v, GAMMA0, T0, TIMES, dps=28)
+    with mpmath.workdps(20):
         got = gamma_gauss([mpmath.mpf(t) for t in TIMES], *body, gamma0=[mpmath.mpf(x) for x in GAMMA0],
-                          t0=mpmath.mpf(T0), dps=25)
+                          t0=mpmath.mpf(T0), dps=20)
         for t, g, ref in zip(TIMES, got, reference):
-            assert max(abs(a - b) for a, b in zip(g, ref)) < mpmath.mpf("1e-24"), (name, t)
-            assert abs(sum(x * x for x in g) - 1) < mpmath.mpf("1e-24")
+            assert max(abs(a - b) for a, b in zip(g, ref)) < mpmath.mpf("1e-19"), (name, t)
+            assert abs(sum(x * x for x in g) - 1) < mpmath.mpf("1e-19")
 
 
 def test_the_parameters_are_the_certified_hypergeometric_form():
