@@ -39,8 +39,6 @@ from derivations.sections.gauss import (
     gauss_equation_expr,
     j,
     mu,
-    v1,
-    v2,
 )
 from derivations.sections.gauss import kappa as gauss_kappa
 from suslov.kernel.kimura import galois_group
