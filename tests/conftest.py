@@ -124,3 +124,15 @@ def forget_loaded():
     for name in set(sys.modules) - modules:
         if "suslov_formulas" in name or name.startswith("gen44"):
             del sys.modules[name]
+
+
+def require_tools(*tools: str) -> None:
+    """Skip when a command-line tool the test needs is missing; under CI (``$CI`` set) fail instead: ``.ci/run``
+    installs them (texlive-latex-base, latexdiff, poppler-utils), so a missing one there is a broken set-up."""
+    import shutil
+
+    missing = [tool for tool in tools if shutil.which(tool) is None]
+    if missing and os.environ.get("CI"):
+        pytest.fail(f"{', '.join(missing)} not found under CI: .ci/run must install it")
+    if missing:
+        pytest.skip(f"{', '.join(missing)} not installed")

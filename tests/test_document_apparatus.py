@@ -6,12 +6,11 @@ compiles the documents there (:func:`derivations.output.pdf.compile_pdfs`) and r
 annotations (:func:`~derivations.output.pdf.link_annotations`), named destinations (``pdfinfo -dests``),
 the outline and the text (``pdftotext``).
 """
-import os
 import re
-import shutil
 from collections import Counter
 
 import pytest
+from conftest import require_tools
 
 from derivations.core import paper_numbers
 from derivations.core.paper_numbers import PRINTED, printed_numbers, unnumbered
@@ -111,11 +110,7 @@ def test_hypotheses_are_printed_with_the_formula():
 @pytest.fixture(scope="module")
 def documents(default_build, tmp_path_factory):
     """(tree, pdfs by name, context) of the default build, rendered and compiled in a temporary directory."""
-    for tool in ("pdflatex", "pdftotext", "pdfinfo"):
-        if shutil.which(tool) is None:
-            if os.environ.get("CI"):
-                pytest.fail(f"{tool} not found under CI: .ci/run must install it")
-            pytest.skip(f"{tool} not installed")
+    require_tools(*("pdflatex", "pdftotext", "pdfinfo"))
     tree = tmp_path_factory.mktemp("tree")
     render_into(default_build, tree)
     compiled = pdf.compile_pdfs(tree, tmp_path_factory.mktemp("pdf"))

@@ -11,14 +11,13 @@ vectors or slopes that need pict2e), and the compiled document shows the three c
 and no prose-lint finding in a document of the figures and the notation alone.
 """
 import itertools
-import os
 import re
-import shutil
 import time
 from fractions import Fraction
 
 import mpmath
 import pytest
+from conftest import require_tools
 
 from derivations.core.emit import emitted_formulas
 from derivations.output import figures, pdf
@@ -144,11 +143,7 @@ def test_figure_file_needs_latex_base_only(ctx):
 
 
 def test_pdf_shows_the_figures(default_build, tmp_path):
-    for tool in ("pdflatex", "pdftotext", "pdftohtml"):
-        if shutil.which(tool) is None:
-            if os.environ.get("CI"):
-                pytest.fail(f"{tool} not found under CI")
-            pytest.skip(f"{tool} not installed")
+    require_tools(*("pdflatex", "pdftotext", "pdftohtml"))
     from derivations.output.prose_lint import findings
 
     tree = tmp_path / "tree"

@@ -11,12 +11,12 @@ mathematical part of every certificate's claim, method and detail survives ``sre
 text (what ``certificates.json`` keeps) reads back as the same expression, so no term is lost between
 the structure, the JSON and the documents.
 """
-import os
 import shutil
 import subprocess
 
 import pytest
 import sympy as sp
+from conftest import require_tools
 from sympy.functions.special.hyper import TupleArg
 
 from derivations.core import statement
@@ -28,11 +28,7 @@ from derivations.output.pipeline import GENERATED
 @pytest.fixture(scope="module")
 def pdfs(tmp_path_factory):
     """Both documents compiled from the committed tree: name -> PDF path."""
-    for tool in ("pdflatex", "pdftotext", "pdftohtml"):
-        if shutil.which(tool) is None:
-            if os.environ.get("CI"):
-                pytest.fail(f"{tool} not found under CI: .ci/run must install it")
-            pytest.skip(f"{tool} not installed")
+    require_tools(*("pdflatex", "pdftotext", "pdftohtml"))
     return {d.name: d for d in pdf.compile_pdfs(GENERATED, tmp_path_factory.mktemp("pdf"))}
 
 
