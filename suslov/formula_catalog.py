@@ -98,7 +98,10 @@ class Entry:
         return self._expr
 
     def __call__(self, **values):
-        """The formula with symbols replaced by name (``catalog["A0"](p=7)``): a new entry."""
+        """The formula with symbols replaced by name (``catalog["A0"](p=7)``): a new entry.
+
+        Numbers are read exactly, as the run-time routines read them (:func:`suslov.kernel.validate.rational`):
+        a float is its binary value, ``"0.7"`` is 7/10; a SymPy expression is substituted as it is."""
         expr = self.expr
         if expr is None:
             raise ValueError(f"catalog entry {self.id!r} is prose: it has no symbols to substitute")
@@ -108,7 +111,7 @@ class Entry:
         if unknown:
             raise ValueError(f"catalog entry {self.id!r}: no symbol named {', '.join(unknown)} "
                              f"(its symbols: {', '.join(sorted(by_name))})")
-        value = expr.subs({by_name[k]: sp.sympify(v) for k, v in values.items()})
+        value = expr.subs({by_name[k]: _exact(sp, k, v) for k, v in values.items()})
         return Entry({**self._record, "srepr": sp.srepr(value), "latex": sp.latex(value)}, self._certificates,
                      {**self.parameters, **values})
 
@@ -161,6 +164,16 @@ class Entry:
                 f"<small>(paper: {numbers})</small><br>{html.escape(self._repr_latex_())}<br>"
                 f"<small>Hypotheses: {hypotheses}</small>"
                 f"<table><tr><th>certificate</th><th>kind</th><th>outcome</th><th>claim</th></tr>{rows}</table></div>")
+
+
+def _exact(sp, name: str, value):
+    """A substituted value: a SymPy object as it is, a number exactly (ValueError naming ``name`` otherwise)."""
+    if isinstance(value, sp.Basic):
+        return value
+    from suslov.kernel.validate import rational
+
+    number = rational(name, value)
+    return sp.Rational(number.numerator, number.denominator)
 
 
 class Family:

@@ -134,6 +134,21 @@ def test_family_refuses_values_it_cannot_certify(monkeypatch, tmp_path):
         catalog["no_such_formula"]
 
 
+def test_substituted_numbers_are_read_exactly():
+    """A decimal string is the rational it writes, a float its binary value, a huge integer itself (expected
+    values by Python's Fraction, not by the catalog)."""
+    from fractions import Fraction
+
+    for given, exact in (("0.7", Fraction(7, 10)), (0.1, Fraction(0.1)), (1e300, Fraction(1e300)),
+                         (10**40, Fraction(10**40))):
+        rhs = catalog["omegas"](p=3, d=given).expr[0].rhs
+        t = [s for s in rhs.free_symbols if s.name == "t"][0]
+        assert sp.simplify(rhs - sp.Rational(3) / sp.Rational(exact.numerator, exact.denominator) * sp.tanh(t)) == 0
+        assert not rhs.atoms(sp.Float)
+    with pytest.raises(ValueError, match="d="):
+        catalog["omegas"](d=float("nan"))
+
+
 def test_entry_substitution_names_unknown_symbols():
     with pytest.raises(ValueError, match="no symbol named q"):
         catalog["omegas"](q=2)
@@ -201,3 +216,41 @@ def test_maple_file_procedures_parse_back(tmp_path):
     for value, body in bodies.items():
         entry = family(p=int(value))
         assert same(entry.expr, parse_maple(body, entry.expr))
+
+
+def test_first_integral_family_at_p_101_is_conserved_exactly():
+    """Beyond the default range (issue 43's rule): the family's construction at p = 101, its time derivative
+    along the equations of motion (written out here) evaluated exactly at a rational point."""
+    from suslov import active_formulas
+    from suslov.catalog_families import first_integrals
+
+    expr = first_integrals(active_formulas(), 101)
+    parts = {str(eq.lhs): eq.rhs for eq in expr}
+    symbols = {s.name: s for s in expr.free_symbols}
+    d, w1, w2 = symbols["d"], symbols["omega1"], symbols["omega2"]
+    g1, g2, g3 = sp.symbols("gamma1 gamma2 gamma3")
+    # eq:sysfin with p = 101 (section 4): omega1' = (p/d) omega2^2/(d^2+1) ... as the sysfin entry states it
+    rates = {}
+    for eq in catalog["sysfin"](p=101).expr:
+        functions = {f: {"omega1": w1, "omega2": w2}[f.func.__name__] for f in eq.rhs.atoms(sp.core.function.AppliedUndef)}
+        rhs = eq.rhs.xreplace(functions)
+        rates[eq.lhs.expr.func.__name__] = rhs.xreplace({s: symbols.get(s.name, s) for s in rhs.free_symbols})
+    at_d = {d: sp.Rational(3, 7)}
+    at_w = {w1: sp.Rational(2, 5), w2: sp.Rational(-5, 11)}
+    g = {g1: sp.Rational(1, 3), g2: sp.Rational(2, 3), g3: sp.Rational(-2, 3)}
+    # polynomials in (omega, gamma) over Q once d is a number: exact derivatives of about 150 terms each
+    P = {name: sp.Poly(value.subs(at_d), w1, w2, domain="QQ") for name, value in parts.items()}
+    rate = {name: value.subs(at_d).subs(at_w) for name, value in rates.items()}
+    def dP(name, var):
+        return P[name].diff(var).eval(at_w) if P[name].degree(var) > 0 else 0
+
+    values = {name: P[name].eval(at_w) for name in P}
+    Fw1 = sum(dP(n, w1) * gv for n, gv in zip(("P1", "P2", "P3"), g.values()))
+    Fw2 = sum(dP(n, w2) * gv for n, gv in zip(("P1", "P2", "P3"), g.values()))
+    W1, W2 = at_w[w1], at_w[w2]
+    G1, G2, G3 = g.values()
+    dg = (-G3 * W2, G3 * W1, G1 * W2 - G2 * W1)
+    dot = Fw1 * rate["omega1"] + Fw2 * rate["omega2"] + sum(values[n] * v for n, v in zip(("P1", "P2", "P3"), dg))
+    assert dot == 0
+    F = sum(values[n] * gv for n, gv in zip(("P1", "P2", "P3"), g.values()))
+    assert F != 0
