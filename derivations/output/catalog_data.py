@@ -30,14 +30,8 @@ import json
 
 import sympy as sp
 
-SCHEMA = 1
-FILENAME = "catalog.json"
-
-try:   # the paper's printed numbers (the documents' numbering); absent, the labels stand alone
-    from derivations.core.paper_numbers import printed_numbers
-except ImportError:   # pragma: no cover - only while the numbering module is being written
-    def printed_numbers(label_field: str) -> list[str]:
-        return []
+from derivations.core.paper_numbers import printed_numbers
+from suslov.formula_catalog import FILENAME, SCHEMA  # noqa: F401 - one definition: what the reader expects
 
 
 class CatalogError(ValueError):
