@@ -5,6 +5,7 @@ Usage examples::
 
     python build_formulas.py                 # full build into generated/
     python build_formulas.py --pmax 51       # per-p tables up to p = 51
+    python build_formulas.py --pmax 201 --cross-check-pmax 201   # every p's logarithm recursions (default: p <= 101, a sample above)
     python build_formulas.py --check         # compare generated/ with the build (cache or rebuild), exit 3 if it differs
     python build_formulas.py --only model    # certify one derivation (generated/ untouched)
     python build_formulas.py --verify generated   # check the tree's SHA256SUMS, certify its module, rewrite nothing

@@ -140,7 +140,8 @@ def build_key(options, only) -> str:
             if path.is_dir() else [path] if path.is_file() else []   # a wheel has no build_formulas.py
         for f in files:
             digest.update(str(f.relative_to(base)).encode() + b"\0" + f.read_bytes() + b"\0")
-    digest.update(json.dumps([options.pmax, options.ball_checks, sorted(only or []), library_versions()]).encode())
+    digest.update(json.dumps([options.pmax, options.ball_checks, options.cross_check_pmax, sorted(only or []),
+                               library_versions()]).encode())
     return digest.hexdigest()[:40]
 
 

@@ -21,7 +21,7 @@ from pathlib import Path
 import suslov.manifest as manifest
 from derivations.core.cache import TreeCache, build_key, cache_root, per_p_store
 from derivations.core.certificates import CertificationFailure
-from derivations.core.options import BALL_CHECKS, PMAX_LIMIT, BuildOptions
+from derivations.core.options import BALL_CHECKS, CROSS_CHECK_PMAX, CROSS_CHECK_STEP, PMAX_LIMIT, BuildOptions
 from derivations.output.estimate import Calibration, estimate_seconds, predicted_seconds
 from derivations.output.pdf import PdfError, compile_pdfs, document_report
 from derivations.output.pipeline import (
@@ -113,6 +113,11 @@ def parser() -> argparse.ArgumentParser:
                          "representative bodies and the scattering enclosure points; 'default' a few of each (seconds), "
                          "'full' all of them (20 seeded bodies at 100 digits, 7 bodies, 18 points: about 30 s more on "
                          "one core); the certificates say which")
+    ap.add_argument("--cross-check-pmax", type=_cross_check_pmax, default=CROSS_CHECK_PMAX, metavar="N",
+                    help="the per-p logarithm recursions (Frobenius at t0, obstructions at s1..s4) cross-check a "
+                         f"theorem proved for every p: they run for every p <= N (default %(default)s) and above it "
+                         f"only for p = 0 or 1 mod {CROSS_CHECK_STEP} and the largest even and odd p of the range; "
+                         "N >= pmax runs every p")
     ap.add_argument("--jobs", type=_jobs, default=None, metavar="N",
                     help="worker processes for the per-p certificates (default: all cores; 1: none); the outputs "
                          "are identical whatever N")
@@ -125,6 +130,16 @@ def parser() -> argparse.ArgumentParser:
                          f"${NO_CACHE_ENV}=1)")
     ap.add_argument("--quiet", action="store_true", help="no progress display and no certificate summary")
     return ap
+
+
+def _cross_check_pmax(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--cross-check-pmax {text!r}: not an integer") from None
+    if not 1 <= value <= PMAX_LIMIT:
+        raise argparse.ArgumentTypeError(f"--cross-check-pmax {value}: must be between 1 and {PMAX_LIMIT}")
+    return value
 
 
 def _jobs(text: str) -> int:
@@ -241,8 +256,8 @@ def main(argv: list[str] | None = None) -> int:
         args.jobs, capped = worker_limit(args.jobs, "--jobs")
         if capped:
             print(f"build_formulas.py: note: {capped}", file=sys.stderr)
-    options = BuildOptions(pmax=args.pmax, ball_checks=args.ball_checks, jobs=args.jobs,
-                           scheduler=scheduler_address(args.scheduler), cache=use_cache)
+    options = BuildOptions(pmax=args.pmax, ball_checks=args.ball_checks, cross_check_pmax=args.cross_check_pmax,
+                           jobs=args.jobs, scheduler=scheduler_address(args.scheduler), cache=use_cache)
     if options.scheduler:
         try:
             check_reachable(options.scheduler)
@@ -273,13 +288,13 @@ def main(argv: list[str] | None = None) -> int:
         if status is not None:
             return status
     if not args.quiet and not args.only and options.pmax > ESTIMATE_FROM:
-        seconds = estimate_seconds(options.pmax, options.jobs)
+        seconds = estimate_seconds(options.pmax, options.jobs, cross_check_pmax=options.cross_check_pmax)
         if seconds is not None:
             print(f"build_formulas.py: --pmax {options.pmax}: estimated {seconds / 60:.1f} min on the benchmark's "
                   "machine (power-law fit in bench/results/build.md), recalibrated on this machine as the "
                   "build runs; proceeding", file=sys.stderr)
 
-    calibration = None if args.only else Calibration(predicted_seconds(options.pmax, options.jobs))
+    calibration = None if args.only else Calibration(predicted_seconds(options.pmax, options.jobs, cross_check_pmax=options.cross_check_pmax))
     try:
         build = derive(options, args.only, Progress(quiet=args.quiet, calibration=calibration))
     except CertificationFailure as failure:

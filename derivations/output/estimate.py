@@ -23,6 +23,7 @@ import json
 import os
 from pathlib import Path
 
+from derivations.core.options import CROSS_CHECK_PMAX, cross_check_p_values
 from derivations.sections.galois import (
     GALOIS_PMAX,  # galois decides the conjecture for p <= max(pmax, GALOIS_PMAX)
 )
@@ -31,9 +32,17 @@ MIN_CALIBRATION = 0.02   # the time left is said once this share of the predicti
 
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "results" / "build.json"
 PARALLEL = ("galois", "meromorphic", "residue", "roundtrip")   # the phases run through CertificateLog.map_per_p
+SAMPLED = ("galois", "residue")   # per-p cross-checks: every p up to cross_check_pmax, a sample above
 
 
-def estimate_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH) -> float | None:
+def _cost(c: dict, name: str, top: int, dense: int) -> float:
+    """Benchmark seconds of one parity class ``c`` of phase ``name`` over the p it runs on up to ``top``."""
+    ps = cross_check_p_values(top, dense) if name in SAMPLED else range(1, top + 1)
+    return sum(c["coefficient"] * p ** c["exponent"] for p in ps if p >= c["first"] and (p - c["first"]) % c["step"] == 0)
+
+
+def estimate_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH,
+                     cross_check_pmax: int = CROSS_CHECK_PMAX) -> float | None:
     """Estimated wall seconds of a full build at ``pmax``, or None without benchmark data."""
     try:
         data = json.loads(bench.read_text(encoding="utf-8"))
@@ -49,22 +58,21 @@ def estimate_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH)
         top = max(pmax, GALOIS_PMAX) if name == "galois" else pmax
         measured_top = max(base_run["pmax"], GALOIS_PMAX) if name == "galois" else base_run["pmax"]
         for c in g["classes"]:
-            cost = lambda n, c=c: sum(c["coefficient"] * p ** c["exponent"]  # noqa: E731
-                                      for p in range(c["first"], n + 1, c["step"]))
-            per_p_total += share * cost(top)
-            measured_total += cost(measured_top)
+            per_p_total += share * _cost(c, name, top, cross_check_pmax)
+            measured_total += _cost(c, name, measured_top, CROSS_CHECK_PMAX)
     rest = max(0.0, base_run["wall_seconds"] - measured_total)   # everything that is not a per-p phase
     return rest + per_p_total
 
 
-def _phase(growth: dict, name: str, pmax: int) -> float:
-    """Benchmark seconds of derivation ``name``'s per-p phase for every p up to ``pmax`` (0 without a law)."""
+def _phase(growth: dict, name: str, pmax: int, dense: int = CROSS_CHECK_PMAX) -> float:
+    """Benchmark seconds of derivation ``name``'s per-p phase for the p it runs on up to ``pmax`` (0 without a
+    law; the sampled cross-checks every p up to ``dense``, a sample above)."""
     top = max(pmax, GALOIS_PMAX) if name == "galois" else pmax
-    return sum(c["coefficient"] * p ** c["exponent"] for c in growth.get(name, {}).get("classes", ())
-               for p in range(c["first"], top + 1, c["step"]))
+    return sum(_cost(c, name, top, dense) for c in growth.get(name, {}).get("classes", ()))
 
 
-def predicted_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH) -> dict | None:
+def predicted_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH,
+                      cross_check_pmax: int = CROSS_CHECK_PMAX) -> dict | None:
     """Benchmark-machine seconds per derivation of a build at ``pmax`` (and ``"rest"``: start-up,
     rendering, the round trip), or None without benchmark data with per-derivation times."""
     try:
@@ -81,7 +89,7 @@ def predicted_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH
 
     def moved(name: str) -> float:
         share = 1.0 / workers if name in PARALLEL else 1.0
-        return share * (_phase(growth, name, pmax) - _phase(growth, name, run["pmax"]))
+        return share * (_phase(growth, name, pmax, cross_check_pmax) - _phase(growth, name, run["pmax"]))
 
     predicted = {name: max(0.0, seconds + moved(name)) for name, seconds in run["derivations"].items()}
     predicted["rest"] = max(0.0, run["wall_seconds"] - sum(run["derivations"].values()) + moved("roundtrip"))

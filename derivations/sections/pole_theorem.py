@@ -52,6 +52,11 @@ Conjecture 1 at s1, s2 for every even p (the per-p obstruction says "all but fin
 Cross-checks (comparisons, not part of the proof): the per-p Frobenius verdicts of ``residue`` (p <= pmax) and
 of ``galois`` (s1..s4, p <= galois_pmax), and the ball monodromy of the representative bodies of ``fuchsian``
 (the loop about x = i excludes the identity exactly where the theorem predicts a logarithm or a branch).
+Since the theorem covers every p, the per-p recursions (cost ~p^3 per p) run for every p <= ``cross_check_pmax``
+(101 by default, ``--cross-check-pmax``) and above it for a sample only
+(:func:`derivations.core.options.cross_check_p_values`: p = 150, 151, 200, 201, ... and the largest even and
+odd p of the stage's range); the comparisons below take exactly the rows that ran and name them
+(:func:`derivations.core.options.checked_words`: "every p <= 101 and the sample p = 150, 151, 200, 201").
 The run-time decision for any body: :func:`suslov.validated.local_behaviour`.
 """
 from __future__ import annotations
@@ -60,6 +65,7 @@ import sympy as sp
 
 from derivations.core.certificates import Certificate, CertificateLog, Outcome
 from derivations.core.exact import Domain, Extension, certify_zero
+from derivations.core.options import checked_words, dense_prefix
 from derivations.core.result import DerivationResult
 from derivations.sections.fuchsian import cross
 from derivations.core.differential import t
@@ -203,21 +209,23 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
         predicted = "no logarithms" if row["p"] % 2 else "logarithms"
         if (row["verdict"] == "no logarithms") != (predicted == "no logarithms"):
             mismatches.append(f"$p = {row['p']}$: {row['verdict']}")
+    # the p that ran (every p <= cross_check_pmax and a sample above it: derivations.core.options.cross_check_p_values)
     residue_ps = [row["p"] for row in residue_result.exports["log_rows"]]
     c_residue_agree = log.record(Certificate(
-        f"the theorem agrees with the exact Frobenius recursion at $t0 = i pi/2$ for every $p <= {max(residue_ps)}$ "
+        f"the theorem agrees with the exact Frobenius recursion at $t0 = i pi/2$ for {checked_words(residue_ps)} "
         "($I13 = 0$, $Lambda = p$: no logarithms exactly for odd $p$)", "Theorem 3.2",
         "comparison of the per-$p$ verdicts (`residue`) with the theorem's", Outcome.FAIL if mismatches else Outcome.PASS,
-        0.0, len(residue_ps), "; ".join(mismatches) or f"{len(residue_ps)} values of $p$ agree"))
+        0.0, len(residue_ps), "; ".join(mismatches) or _agree_words(residue_ps)))
     galois_rows = galois_result.exports["log_rows"]
+    galois_ps = [row["p"] for row in galois_rows]
     wrong = [row["p"] for row in galois_rows
              if [_logarithmic(row[k]) for k in ("s1", "s2", "s3", "s4")] != [row["p"] % 2 == 0] * 2 + [False] * 2]
     c_galois_agree = log.record(Certificate(
-        f"the theorem agrees with the exact obstructions at $s1$, $s2$, $s3$, $s4$ for every $p <= {galois_result.exports['galois_pmax']}$ "
+        f"the theorem agrees with the exact obstructions at $s1$, $s2$, $s3$, $s4$ for {checked_words(galois_ps)} "
         "($s1$, $s2$ logarithmic exactly for even $p$, $s3$, $s4$ never)", "Conjecture 1",
         "comparison of the per-$p$ verdicts (`galois`) with the theorem's", Outcome.FAIL if wrong else Outcome.PASS,
         0.0, len(galois_rows), ("differ at " + ", ".join(f"$p = {q}$" for q in wrong)) if wrong
-        else f"{len(galois_rows)} values of $p$ agree"))
+        else _agree_words(galois_ps)))
     ball_rows = fuchsian_result.exports["rows"]
     disagree = []
     for row in ball_rows:
@@ -273,6 +281,13 @@ def run(log: CertificateLog, options, gauss_result, residue_result, galois_resul
                                         "residue_agree": c_residue_agree.key, "galois_agree": c_galois_agree.key,
                                         "ball_agree": c_ball_agree.key})
     return result
+
+
+def _agree_words(values) -> str:
+    """The detail of an agreeing comparison: how many p, and which when the recursion was sampled."""
+    if dense_prefix(values) == max(values):
+        return f"{len(values)} values of $p$ agree"
+    return f"{len(values)} values of $p$ agree: {checked_words(values)}"
 
 
 def _logarithmic(verdict: str) -> bool:
