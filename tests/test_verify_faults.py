@@ -157,8 +157,8 @@ FAULTS = [
      "out[2, j] = sigma[p] * (sphi * re + cphi * im)", "gamma^(3) negated"),
     ("basis-mp-phase-digits", ("gamma_basis_mp",), R + "basis.py", "with mpmath.workdps(dps + 10 + extra):",
      "with mpmath.workdps(dps - 10 + extra):", "the phase p t/d ~ 1e11 to 20 fewer digits"),
-    ("basis-mp-harmonic", ("gamma_basis_mp",), R + "basis.py", "cosines = [mpmath.cos(k * th) for k in range(p + 1)]",
-     "cosines = [mpmath.cos((k + 1) * th) for k in range(p + 1)]", "the cosine harmonics off by one"),
+    ("basis-mp-harmonic", ("gamma_basis_mp",), R + "basis.py", "mpf_cos_sin(mpf_mul_int(th_, k, prec, rnd), prec, rnd)",
+     "mpf_cos_sin(mpf_mul_int(th_, k + 1, prec, rnd), prec, rnd)", "the harmonics (cos and sin of k th) off by one"),
 ]
 
 # tried, and observable nowhere: not faults (not run)
