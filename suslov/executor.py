@@ -331,12 +331,24 @@ def _kill(workers: int, pool) -> None:
     pool.shutdown(wait=False, kill_workers=True)
 
 
+# the workers' scheduling priority below their parent's (``nice``): on a machine with as many cores as workers,
+# work the parent does meanwhile (the build's symbolic derivations while the workers run prefetched ball checks)
+# is its critical path, and at equal priority the workers took a share of its core; work nobody competes
+# for runs as fast as before
+WORKER_NICENESS = 5
+
+
 def _worker_init(parent: int) -> None:
     """In each worker: Ctrl-C is the parent's to handle (no traceback per worker), and the worker ends
     itself within half a second once its parent is gone (``kill -9`` of a build or a sweep leaves no
-    orphans computing, and with them the resource tracker, whose pipe they hold, ends too)."""
+    orphans computing, and with them the resource tracker, whose pipe they hold, ends too); it runs at
+    ``WORKER_NICENESS`` below its parent's priority."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     die_with_parent()
+    try:
+        os.nice(WORKER_NICENESS)
+    except (AttributeError, OSError):   # no nice on this platform, or not permitted: equal priority then
+        pass
 
     def watch():
         while os.getppid() == parent:

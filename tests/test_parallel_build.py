@@ -76,3 +76,24 @@ def test_round_trip_refuses_an_emitted_core_with_another_fingerprint():
     assert roundtrip.basis_core_by_digest(module, 17, wrong)[0].outcome is Outcome.FAIL
     with pytest.raises(CertificationFailure):                  # and recorded, it stops the build
         CertificateLog().record(roundtrip.basis_core_by_digest(module, 17, wrong)[0])
+
+
+def test_round_trip_float_checks_are_identical_in_workers_and_in_one_process(default_build, tmp_path):
+    """The round trip's float-path checks run in the worker processes while this process certifies the emitted
+    formulas and the cores (``roundtrip.float_check``); recorded in their order, they make the log that one
+    process makes with the checks in line (``float_paths.certify``), certificate for certificate."""
+    from derivations.core.certificates import CertificateLog
+    from derivations.output import float_paths, roundtrip
+    from derivations.output.pipeline import render_into
+
+    render_into(default_build, tmp_path, only=("__init__.py", "suslov_formulas.py"))
+    logs = {jobs: CertificateLog(workers=jobs) for jobs in (1, 2)}
+    for log in logs.values():
+        roundtrip.certify_module(log, default_build, tmp_path)
+    in_line, in_workers = ([c.deterministic_record() for c in log.certificates] for log in logs.values())
+    assert in_line == in_workers
+    # every check of the task list ran: the per-p gamma_basis proofs of every kept p among them
+    module = roundtrip.load_module(tmp_path)
+    names = [name for name, _ in float_paths.tasks(module, default_build)]
+    assert names.count("gamma_basis") == len(module.BASIS_PS) and names.count("first_integral") == len(module.INTEGRAL_PS)
+    assert sum(1 for c in in_workers if c["claim"].startswith("p = ") and "gamma_basis" in c["claim"]) >= 2 * len(module.BASIS_PS)

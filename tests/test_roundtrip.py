@@ -82,7 +82,7 @@ def mutated_runtime(monkeypatch, filename, original, mutated):
                          ids=[f"{m[1][:-3]}-{m[0]}-{i}" for i, m in enumerate(RUNTIME_MUTATIONS)])
 def test_each_runtime_mutation_is_rejected_and_named(default_build, monkeypatch, name, filename, original, mutated):
     mutated_runtime(monkeypatch, filename, original, mutated)
-    problem = verify(default_build, GENERATED)
+    problem = verify(default_build, GENERATED, jobs=1)   # the fault is patched into this process
     assert problem is not None, f"mutation in suslov/runtime/{filename} passed the round trip"
     assert name in problem
 
@@ -124,7 +124,7 @@ def test_fault_in_the_runtime_kernel_is_rejected(default_build, monkeypatch):
         return np.sin(0.5 * np.pi * r), np.where(r >= 0.5, np.cos(0.5 * np.pi * (1.0 - r)), np.cos(0.5 * np.pi * r))
 
     monkeypatch.setattr(phase, "half_pi_parts", faulty)
-    problem = verify(default_build, GENERATED)
+    problem = verify(default_build, GENERATED, jobs=1)   # the fault is patched into this process
     assert problem is not None and "scattering_angle" in problem
 
 

@@ -40,7 +40,7 @@ def main(trees: list[str]) -> dict:
         try:
             from derivations.output.roundtrip import verify   # fresh: its lazy imports resolve in the copy
 
-            outcome[tree] = verify(build, Path(tree) / "generated")
+            outcome[tree] = verify(build, Path(tree) / "generated", jobs=1)   # the copy is on this process's path
         except Exception as error:   # a check that crashes on a fault is a rejection, named as --verify would
             outcome[tree] = f"the module in {tree} cannot be checked: {type(error).__name__}: {error}"
         finally:

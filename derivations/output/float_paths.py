@@ -266,12 +266,12 @@ def check_input_validation(log: CertificateLog, module) -> Certificate:
         len(calls), ("accepted: " + ", ".join(sorted(set(accepted)))) if accepted else f"{len(calls)} calls refused"))
 
 
-def check_load_certificates(log: CertificateLog, module, build) -> Certificate:
+def check_load_certificates(log: CertificateLog, module, pmax: int) -> Certificate:
     """``load_certificates`` returns the tree's own certificates document (pmax, errata, certificate list)."""
     with stopwatch() as elapsed:
         try:
             document = module.load_certificates()
-            ok = (document.get("pmax") == build.options.pmax and isinstance(document.get("certificates"), list)
+            ok = (document.get("pmax") == pmax and isinstance(document.get("certificates"), list)
                   and isinstance(document.get("errata"), list))
             detail = "`pmax`, certificates and errata read back" if ok else f"read back: `{sorted(document)[:5]}`"
         except Exception as error:   # any failure of the emitted function is the finding
@@ -281,30 +281,52 @@ def check_load_certificates(log: CertificateLog, module, build) -> Certificate:
                                   detail))
 
 
-def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list:
-    """Every float-path check; one per function, and one per p for the per-p functions, except the p
-    in ``skip`` (bases certified in workers: :func:`derivations.output.roundtrip.per_p_checks` runs these
-    same checks for them in workers)."""
-    from derivations.proofs.float_proofs import certificate as proven
-    from derivations.proofs.general_angle_proof import certificates as proven_general_angle
-    from derivations.proofs.integral_proof import certificate as proven_integral
-    from derivations.output.kovalevskaya_balls import (
-        check_kovalevskaya_exponents,
-        check_meromorphy,
-        check_meromorphy_cases,
-    )
-
+def tasks(module, build, skip: set = frozenset()) -> list[tuple[str, object]]:
+    """Every float-path check as (name, argument), in the order the round trip records them: one per function,
+    and one per p for the per-p functions, except the p in ``skip`` (bases certified in workers:
+    :func:`derivations.output.roundtrip.per_p_checks` runs these same checks for them).  Plain data, so that
+    :func:`run` can take a check to a worker process (the argument of a ``gamma_basis`` check is its p; the
+    numerators are the caller's to supply; the p are the module's own ``INTEGRAL_PS`` and ``BASIS_PS``)."""
+    matrix = build.results["kovalevskaya"].exports["matrix"]
     # omega, omega_general, scattering_angle and first_integral: proven bounds instead of samples
-    certs = [proven(log, module, "omega"), proven(log, module, "omega_general"), proven(log, module, "scattering_angle"),
-             *proven_general_angle(log, module), *check_general_scattering_angle(log, module), check_special_case_chain(log, module), check_meromorphy(log, module, build.results["kovalevskaya"].exports["matrix"]),
-             check_kovalevskaya_exponents(log, module, build.results["kovalevskaya"].exports["matrix"]),
-             check_meromorphy_cases(log, module, build.results["kovalevskaya"].exports["matrix"]), check_input_validation(log, module),
-             check_load_certificates(log, module, build)]
-    for p in module.INTEGRAL_PS:
-        if p not in skip:
-            certs.append(proven_integral(log, module, p))
+    return ([("proven", "omega"), ("proven", "omega_general"), ("proven", "scattering_angle"), ("general_angle_proof", None),
+             ("general_scattering_angle", None), ("special_case_chain", None), ("meromorphy", matrix),
+             ("kovalevskaya_exponents", matrix), ("meromorphy_cases", matrix), ("input_validation", None),
+             ("load_certificates", build.options.pmax)]
+            + [("first_integral", p) for p in module.INTEGRAL_PS if p not in skip]
+            + [("gamma_basis", p) for p in module.BASIS_PS if p not in skip])
+
+
+def run(log: CertificateLog, module, name: str, argument, numerators=None) -> list:
+    """The check ``(name, argument)`` of :func:`tasks` on ``module``, recorded in ``log``; ``numerators``: for a
+    ``gamma_basis`` check, the certified numerators of that p (None: the proof that needs them fails)."""
+    from derivations.output import kovalevskaya_balls
+    from derivations.proofs.float_proofs import certificate as proven
+    from derivations.proofs.general_angle_proof import (
+        certificates as proven_general_angle,
+    )
+    from derivations.proofs.integral_proof import certificate as proven_integral
+
+    checks = {
+        "proven": lambda: proven(log, module, argument),
+        "general_angle_proof": lambda: proven_general_angle(log, module),
+        "general_scattering_angle": lambda: check_general_scattering_angle(log, module),
+        "special_case_chain": lambda: check_special_case_chain(log, module),
+        "meromorphy": lambda: kovalevskaya_balls.check_meromorphy(log, module, argument),
+        "kovalevskaya_exponents": lambda: kovalevskaya_balls.check_kovalevskaya_exponents(log, module, argument),
+        "meromorphy_cases": lambda: kovalevskaya_balls.check_meromorphy_cases(log, module, argument),
+        "input_validation": lambda: check_input_validation(log, module),
+        "load_certificates": lambda: check_load_certificates(log, module, argument),
+        "first_integral": lambda: proven_integral(log, module, argument),
+        "gamma_basis": lambda: check_gamma_basis(log, module, argument, numerators),
+    }
+    made = checks[name]()
+    return list(made) if isinstance(made, list) else [made]
+
+
+def certify(log: CertificateLog, module, build, skip: set = frozenset()) -> list:
+    """Every check of :func:`tasks` in this process (the ``gamma_basis`` ones on the numerators kept by the
+    build)."""
     cores = build.results["meromorphic"].exports["objects"]
-    for p in module.BASIS_PS:
-        if p not in skip:
-            certs += check_gamma_basis(log, module, p, cores.get(p))
-    return certs
+    return [c for name, argument in tasks(module, build, skip)
+            for c in run(log, module, name, argument, cores.get(argument) if name == "gamma_basis" else None)]

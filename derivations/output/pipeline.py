@@ -185,6 +185,12 @@ def _scattering_keys(build: Build) -> str:
     return ", ".join(f"{k} {v}" for k, v in sorted(build.results["scattering"].exports["certificates"].items()))
 
 
+def titles(build: Build) -> dict:
+    """Every derivation's title, and the round trip's."""
+    return {**{name: DERIVATIONS[name].TITLE for name in build.names},
+            "roundtrip": "The emitted module, as written (round trip)"}
+
+
 def context(build: Build) -> dict:
     """Everything the templates see (deterministic apart from ``costs``)."""
     certificates = [c.typeset_record() for c in build.log.certificates]
@@ -197,8 +203,7 @@ def context(build: Build) -> dict:
         "odd_ps": build.options.odd_p_values(),
         "even_ps": build.options.even_p_values(),
         "names": build.names,
-        "titles": {**{name: DERIVATIONS[name].TITLE for name in build.names},
-                   "roundtrip": "The emitted module, as written (round trip)"},
+        "titles": titles(build),
         # the certificates document lists every derivation's certificates and the round trip's
         "certificate_sections": build.names + ["roundtrip"],
         "results": results,
@@ -254,9 +259,16 @@ def certificate_document(build: Build, ctx: dict | None = None) -> dict:
     }
 
 
+def make_catalog(build: Build) -> None:
+    """``build.catalog_json`` (the srepr round trip of every formula, :mod:`derivations.output.catalog_data`), made
+    once per build, not per render."""
+    if build.catalog_json is None:
+        build.catalog_json = catalog_data.catalog_text(build, titles(build))
+
+
 def render_into(build: Build, directory: Path, only: tuple[str, ...] | None = None) -> list[str]:
-    """Write every output whose derivations ran into ``directory`` (of the templated ones, those named in
-    ``only`` where given; the JSON files always)."""
+    """Write every output whose derivations ran into ``directory`` (of the templated ones and the catalog, those
+    named in ``only`` where given; the other JSON files always)."""
     ctx = context(build)
     written = []
     for template, filename, needs in OUTPUTS:
@@ -265,9 +277,10 @@ def render_into(build: Build, directory: Path, only: tuple[str, ...] | None = No
             written.append(filename)
     (directory / "certificates.json").write_text(
         json.dumps(certificate_document(build, ctx), indent=1, sort_keys=True) + "\n", encoding="utf-8")
-    if build.catalog_json is None:   # the srepr round trip of every formula: once per build, not per render
-        build.catalog_json = catalog_data.catalog_text(build, ctx["titles"])
-    (directory / catalog_data.FILENAME).write_text(build.catalog_json, encoding="utf-8")
+    if only is None or catalog_data.FILENAME in only:
+        make_catalog(build)
+        (directory / catalog_data.FILENAME).write_text(build.catalog_json, encoding="utf-8")
+        written.append(catalog_data.FILENAME)
     (directory / "certificate_costs.json").write_text(
         json.dumps({k: round(s, 6) for k, _, s in ctx["costs"]}, indent=1, sort_keys=True) + "\n",
         encoding="utf-8")
@@ -276,8 +289,8 @@ def render_into(build: Build, directory: Path, only: tuple[str, ...] | None = No
         + "\n", encoding="utf-8")
     (directory / "cache_report.json").write_text(
         json.dumps(build.log.cache_report, indent=1, sort_keys=True) + "\n", encoding="utf-8")
-    return written + ["certificates.json", catalog_data.FILENAME, "certificate_costs.json",
-                      "certificate_measurements.json", "cache_report.json"]
+    return written + ["certificates.json", "certificate_costs.json", "certificate_measurements.json",
+                      "cache_report.json"]
 
 
 def write_manifest(directory: Path) -> Path:
@@ -335,7 +348,8 @@ def write_atomically(build: Build, target: Path) -> None:
             from derivations.output.roundtrip import certify_module
 
             emitted = (staging / "suslov_formulas.py").read_bytes()
-            certify_module(build.log, build, staging)
+            # the catalog's srepr check in this process while the workers run the float-path checks
+            certify_module(build.log, build, staging, meanwhile=lambda: make_catalog(build))
             build.round_trip_done = True
             render_into(build, staging)
             if (staging / "suslov_formulas.py").read_bytes() != emitted:

@@ -19,6 +19,7 @@ the paper's labels in prose by its printed numbers.
 """
 from __future__ import annotations
 
+import functools
 import re
 from pathlib import Path
 
@@ -154,7 +155,10 @@ def cite(tex: str) -> str:
     return tex
 
 
+@functools.lru_cache(maxsize=2)
 def _environment(tex: bool) -> jinja2.Environment:
+    # one per kind, kept: Jinja compiles a template once per environment (a build renders twice; it reloads a
+    # template whose file changed, so an edit between two renders in one process is still seen)
     options = dict(loader=jinja2.FileSystemLoader(str(TEMPLATES)), autoescape=False, trim_blocks=True,
                    lstrip_blocks=True, keep_trailing_newline=True, undefined=jinja2.StrictUndefined)
     if tex:

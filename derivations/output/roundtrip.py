@@ -238,20 +238,61 @@ def load_module_once(directory) -> object:
 # ------------------------------------------------------------------ orchestration
 
 
-def certify_module(log: CertificateLog, build, directory: Path) -> list:
-    """All round-trip certificates for the module in ``directory`` (raises CertificationFailure).
+FLOAT_CHECKS = "round trip: float paths"
 
-    In this process: the emitted formulas, the exact cores against the objects kept here, and the
-    float paths of those p; the p whose bases were certified in workers get :func:`per_p_checks`
-    through ``CertificateLog.map_per_p`` (all cores, largest p first, recorded in p order), which
-    runs while this process does its own part.
+
+def float_check(task) -> list:
+    """One check of :func:`derivations.output.float_paths.tasks`, run in a worker: ``task = (directory, name,
+    argument, digest)``.  The module is imported from the directory once per process (the emitted code is
+    what is checked); a ``gamma_basis`` check gets the emitted core's numerators of that p, used only when
+    their :func:`derivations.sections.meromorphic.numerators_digest` equals ``digest``, the certified
+    numerators' (else none, and the proof that needs them fails).  Returns the certificates, keys left to the
+    main log, which records them in the order of the tasks."""
+    from derivations.output import float_paths
+
+    directory, name, argument, digest = task
+    module = load_module_once(directory)
+    private = CertificateLog(derivation=SECTION)
+    numerators = None
+    if name == "gamma_basis":
+        core, numerators = basis_core_by_digest(module, argument, digest)
+        numerators = numerators if core.outcome is Outcome.PASS else None
+    try:
+        with mpmath.workdps(15):
+            float_paths.run(private, module, name, argument, numerators)
+    except CertificationFailure:
+        pass   # returned with the others: the main log raises when it records it, as in one process
+    return private.handed_over()
+
+
+def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None) -> list:
+    """All round-trip certificates for the module in ``directory`` (raises CertificationFailure);
+    ``meanwhile()``, the caller's own work, runs in this process once the float-path checks are started.
+
+    The float-path checks of the functions and of the p whose bases this process keeps
+    (:func:`derivations.output.float_paths.tasks`) start at once in the worker processes
+    (``CertificateLog.prefetch``; in this process when there are none); meanwhile this process
+    certifies the emitted formulas and the exact cores against the objects kept here, then records
+    the float-path certificates in their order and certifies the run-time routes.  The p whose
+    bases were certified in workers get :func:`per_p_checks` through ``CertificateLog.map_per_p``
+    (all cores, largest p first, recorded in p order), after everything above: the log is the one a
+    single process writes.
     """
     from derivations.core.emit import emitted_formulas
     from derivations.output import float_paths, runtime_routes
+    from derivations.sections.meromorphic import numerators_digest
 
     module = load_module(directory)
     exports = build.results["meromorphic"].exports
     digests = exports.get("digests", {})
+    kept = exports["objects"]
+    checks = [(str(directory), name, argument,
+               numerators_digest(*kept[argument]) if name == "gamma_basis" and argument in kept else "")
+              for name, argument in float_paths.tasks(module, build, skip=set(digests))]
+    log.prefetch(FLOAT_CHECKS, checks, float_check, cacheable=False)
+    in_workers = FLOAT_CHECKS in log.prefetched
+    if meanwhile is not None:
+        meanwhile()
     # the same working precision whatever the caller set: the evidence details are part of the byte-identical outputs
     certs = []
 
@@ -259,21 +300,31 @@ def certify_module(log: CertificateLog, build, directory: Path) -> list:
         # while the workers check the later p; recorded first, as when it ran before them
         certs.extend(certify_emitted(log, module, emitted_formulas(build)))
         certs.extend(certify_integral_core(log, module, build.results["first_integrals"].exports["objects"]))
-        certs.extend(certify_basis_core(log, module, exports["objects"]))
-        certs.extend(float_paths.certify(log, module, build, skip=set(digests)))
+        certs.extend(certify_basis_core(log, module, kept))
+        if in_workers:
+            for batch in log.map_per_p(FLOAT_CHECKS, checks, float_check, cacheable=False):
+                certs.extend(log.record(c) for c in batch)
+        else:
+            certs.extend(float_paths.certify(log, module, build, skip=set(digests)))
         certs.extend(runtime_routes.certify(log, module, build))   # every public route, independent references
 
-    with log.section(SECTION), mpmath.workdps(15):
-        tasks = [(str(directory), p, digest) for p, digest in sorted(digests.items())]
-        for batch in log.map_per_p("round trip: bases beyond the kept ones", tasks, per_p_checks, cacheable=False,
-                                   meanwhile=in_this_process):
-            certs += [log.record(c) for c in batch]
+    try:
+        with log.section(SECTION), mpmath.workdps(15):
+            tasks = [(str(directory), p, digest) for p, digest in sorted(digests.items())]
+            for batch in log.map_per_p("round trip: bases beyond the kept ones", tasks, per_p_checks, cacheable=False,
+                                       meanwhile=in_this_process):
+                certs += [log.record(c) for c in batch]
+    finally:
+        log.cancel_prefetched()   # a failure before the float checks were collected leaves none running
     return certs
 
 
-def verify(build, directory: Path) -> str | None:
-    """None when the module in ``directory`` passes every round-trip check, else the first discrepancy."""
-    log = CertificateLog()
+def verify(build, directory: Path, jobs: int | None = None) -> str | None:
+    """None when the module in ``directory`` passes every round-trip check, else the first discrepancy.
+
+    ``jobs``: worker processes for the float-path and per-p checks (None: all cores; 1: all in this process,
+    where a fault patched into this process's modules, as the mutation tests do, is what gets checked)."""
+    log = CertificateLog(workers=jobs)
     try:
         certify_module(log, build, directory)
     except CertificationFailure as failure:
