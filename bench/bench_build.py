@@ -49,6 +49,10 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "bench"))
 
 from machine_info import cpu_name  # noqa: E402
+
+sys.path.insert(0, str(ROOT))
+from derivations.core.options import cross_check_p_values  # noqa: E402
+from derivations.output.estimate import SAMPLED  # noqa: E402
 from results_io import write_results  # noqa: E402
 
 LINE = re.compile(r"\[\d+/\d+\] (\w+): (\d+) certificates, ([0-9.]+) s")
@@ -221,8 +225,11 @@ def growth(costs: dict) -> dict:
                             "first": first, "step": step})
         if not classes:
             continue
-        total = lambda n: sum(c["coefficient"] * p ** c["exponent"]  # noqa: E731
-                              for c in classes for p in range(c["first"], n + 1, c["step"]))
+        # a sampled cross-check (residue, galois) runs on every p up to CROSS_CHECK_PMAX and a sample above
+        ps = (lambda n: cross_check_p_values(n)) if name in SAMPLED else (lambda n: range(1, n + 1))
+        total = lambda n, ps=ps, classes=classes: sum(  # noqa: E731
+            c["coefficient"] * p ** c["exponent"] for c in classes for p in ps(n)
+            if p >= c["first"] and (p - c["first"]) % c["step"] == 0)
         out[name] = {"classes": classes, "largest_p": max(row), "seconds_at_largest_p": row[max(row)],
                      "extrapolated_101": total(101), "extrapolated_201": total(201)}
     return out
@@ -305,7 +312,18 @@ def report(data: dict) -> str:
         lines.append(f"| {name} | {exponents} | {g['largest_p']} | {g['seconds_at_largest_p']:.2f} | "
                      f"{g['extrapolated_101']:.0f} | {g['extrapolated_201']:.0f} |")
     lines += ["", "Extrapolations assume the fitted power law holds beyond the measured range; divide by the "
-              "number of cores for the parallel per-p phases."]
+              "number of cores for the parallel per-p phases. Residue and galois sum the p they run on (every p up to "
+              "101 and a sample above: `derivations.core.options.cross_check_p_values`)."]
+    before = data.get("growth_before")
+    if before:
+        lines += ["", f"## The same growth before this run (the previous `build.json`, {before['what']})", "",
+                  "| derivation | exponent k before | after | whole phase at pmax 201 before (s) | after (s) |",
+                  "| --- | ---: | ---: | ---: | ---: |"]
+        for name in sorted(set(before["growth"]) | set(data["growth"])):
+            old_g, new_g = before["growth"].get(name), data["growth"].get(name)
+            k = [" / ".join(f"{c['exponent']:.1f}" for c in g["classes"]) if g else "" for g in (old_g, new_g)]
+            t = [f"{g['extrapolated_201']:.0f}" if g else "" for g in (old_g, new_g)]
+            lines.append(f"| {name} | {k[0]} | {k[1]} | {t[0]} | {t[1]} |")
     return "\n".join(lines) + "\n"
 
 
@@ -375,7 +393,14 @@ def main(argv=None):
         costs_from = "one process" if one.is_dir() else "all cores: two workers share the machine"
         costs = per_p_costs(one if one.is_dir() else Path(tmp) / f"p{largest}-all")
         baseline = run_baseline(args.baseline, args.baseline_pmax, Path(tmp)) if args.baseline else []
+    try:   # the growth the previous run measured, kept beside the new one ("before and after")
+        previous = json.loads((ROOT / "bench" / "results" / "build.json").read_text(encoding="utf-8"))
+        before = {"what": f"largest pmax {previous['largest_pmax']}, {previous.get('costs_from', '')}",
+                  "growth": previous["growth"]}
+    except (OSError, ValueError, KeyError):
+        before = None
     data = {"machine": cpu_name(), "python": platform.python_version(), "runs": runs, "warm": warm,
+            "growth_before": before,
             "baseline": {"revision": args.baseline, "runs": baseline} if args.baseline else None,
             "interleaved": paired,
             "largest_pmax": largest, "costs_from": costs_from,

@@ -55,7 +55,36 @@ def serialised(expr, where: str) -> str:
     return text
 
 
-def _entry(result, title: str, formula) -> dict:
+def read_back(chunk) -> list[str]:
+    """The same check as :func:`serialised` for texts made elsewhere (run in a worker process): ``chunk`` is a list
+    of (where, srepr text); each text, evaluated, must print back to itself (``srepr`` is SymPy's structural
+    print, so equal texts are equal trees: the object the formula was).  Returns the failures, named."""
+    failures = []
+    for where, text in chunk:
+        try:
+            back = eval(text, {"__builtins__": {}}, _SYMPY)   # noqa: S307 - our own srepr of our own formula
+        except Exception as error:   # noqa: BLE001 - any failure to read back is the same fault
+            failures.append(f"{where}: its SymPy form does not read back from srepr ({error})")
+            continue
+        if sp.srepr(back) != text:
+            failures.append(f"{where}: its SymPy form reads back from srepr as a different object")
+    return failures
+
+
+def read_back_chunks(document: dict, count: int = 4) -> list[list[tuple[str, str]]]:
+    """The formulas of ``document`` as ``count`` chunks of (where, srepr text) for :func:`read_back`, balanced by
+    the texts' lengths (the cost of evaluating them), in a fixed order."""
+    chunks = [[] for _ in range(count)]
+    sizes = [0] * count
+    items = [(f"formula {e['id']!r} of {e['section']}", e["srepr"]) for e in document["entries"] if e["srepr"]]
+    for where, text in sorted(items, key=lambda item: -len(item[1])):
+        k = sizes.index(min(sizes))
+        chunks[k].append((where, text))
+        sizes[k] += len(text)
+    return [chunk for chunk in chunks if chunk]
+
+
+def _entry(result, title: str, formula, check: bool = True) -> dict:
     where = f"formula {formula.key!r} of {result.name}"
     return {
         "id": formula.key,
@@ -68,7 +97,7 @@ def _entry(result, title: str, formula) -> dict:
         "certificates": list(formula.certificates),
         "latex": formula.latex,
         "kind": "prose" if formula.expr is None else "formula",
-        "srepr": None if formula.expr is None else serialised(formula.expr, where),
+        "srepr": None if formula.expr is None else serialised(formula.expr, where) if check else sp.srepr(formula.expr),
     }
 
 
@@ -93,8 +122,9 @@ def _family(family: str, result, title: str, anchor) -> dict:
     }
 
 
-def catalog_document(build, titles: dict) -> dict:
-    """The catalog of ``build`` (entries in document order; ids must be unique)."""
+def catalog_document(build, titles: dict, check: bool = True) -> dict:
+    """The catalog of ``build`` (entries in document order; ids must be unique); ``check=False``: the srepr texts
+    unchecked, for :func:`read_back` to check elsewhere before the file is used."""
     entries, seen = [], {}
     for name in build.names:
         result = build.results[name]
@@ -103,7 +133,7 @@ def catalog_document(build, titles: dict) -> dict:
                 raise CatalogError(f"formula key {formula.key!r} of {name} is also a key of {seen[formula.key]}: "
                                    "catalog ids must be unique")
             seen[formula.key] = name
-            entries.append(_entry(result, titles[name], formula))
+            entries.append(_entry(result, titles[name], formula, check))
     families = {}
     for family, name, title, anchor_key in FAMILIES:
         result = build.results.get(name)
@@ -114,5 +144,10 @@ def catalog_document(build, titles: dict) -> dict:
     return {"schema": SCHEMA, "pmax": build.options.pmax, "entries": entries, "families": families}
 
 
-def catalog_text(build, titles: dict) -> str:
-    return json.dumps(catalog_document(build, titles), indent=1, sort_keys=True, ensure_ascii=True) + "\n"
+def catalog_text(build, titles: dict, check: bool = True) -> str:
+    return text_of(catalog_document(build, titles, check))
+
+
+def text_of(document: dict) -> str:
+    """The file's text (``generated/catalog.json``)."""
+    return json.dumps(document, indent=1, sort_keys=True, ensure_ascii=True) + "\n"

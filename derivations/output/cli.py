@@ -433,6 +433,8 @@ def _write_and_cache(build, target: Path, key, quiet: bool) -> int:
 
 def run(argv: list[str] | None = None) -> int:
     """:func:`main`, with Ctrl-C reported in one line (the output is swapped in whole or not at all)."""
+    from suslov.executor import release_pools
+
     listen_for_interrupts()
     try:
         return main(argv)
@@ -447,4 +449,6 @@ def run(argv: list[str] | None = None) -> int:
         print(f"build_formulas.py: {write_failure(error, 'a file of the build')}; nothing was replaced (an output is "
               "swapped in whole or not at all)", file=sys.stderr)
         return 2
+    finally:
+        release_pools()   # the build is over, written or not: its workers are idle or their work abandoned
 

@@ -76,6 +76,7 @@ class Build:
     seconds: dict = field(default_factory=dict)
     round_trip_done: bool = False
     catalog_json: str | None = None   # generated/catalog.json, made (and its srepr checked) once per build
+    catalog_chunks: list = field(default_factory=list)   # its srepr check while it runs (start_catalog)
 
 
 def time_left(elapsed: float, done: int, total: int, elapsed_at_half: float | None = None) -> float | None:
@@ -130,7 +131,9 @@ class Progress:
         self.phase_times[done] = elapsed
         left = time_left(elapsed, done, total, self.phase_times.get(done // 2))
         estimate = f", about {left:.0f} s left" if left is not None and done < total else ""
-        self.phase_text = f"; {label}: p = {value} ({done}/{total}){estimate}"
+        # a per-p phase names the p reached; other phases (the round trip's checks, the catalog's) only count
+        reached = f"p = {value} " if isinstance(value, int) else ""
+        self.phase_text = f"; {label}: {reached}({done}/{total}){estimate}"
         self._show()
 
     def done(self, name: str | None = None):
@@ -259,11 +262,44 @@ def certificate_document(build: Build, ctx: dict | None = None) -> dict:
     }
 
 
-def make_catalog(build: Build) -> None:
-    """``build.catalog_json`` (the srepr round trip of every formula, :mod:`derivations.output.catalog_data`), made
-    once per build, not per render."""
+CATALOG_CHECK = "catalog: every formula reads back from srepr"
+
+
+def start_catalog(build: Build) -> None:
+    """``build.catalog_json``, made once per build (not per render), and its check that every formula reads back
+    from ``srepr`` (:mod:`derivations.output.catalog_data`): half of the formulas checked here, half started in the
+    worker processes (in this process when there are none, at :func:`finish_catalog`): 0.8 s of evaluating SymPy
+    constructors, shared with the workers while they run the round trip's float-path checks."""
     if build.catalog_json is None:
-        build.catalog_json = catalog_data.catalog_text(build, titles(build))
+        document = catalog_data.catalog_document(build, titles(build), check=False)
+        build.catalog_json = catalog_data.text_of(document)
+        chunks = catalog_data.read_back_chunks(document)
+        # half to the workers, behind the round trip's float-path checks; the other half here meanwhile
+        build.catalog_chunks = chunks[1::2]
+        build.log.prefetch(CATALOG_CHECK, build.catalog_chunks, catalog_data.read_back, cacheable=False)
+        failures = [f for chunk in chunks[::2] for f in catalog_data.read_back(chunk)]
+        if failures:
+            build.catalog_json, build.catalog_chunks = None, []
+            build.log.cancel_prefetched()
+            raise catalog_data.CatalogError(failures[0])
+
+
+def finish_catalog(build: Build) -> None:
+    """The result of the check :func:`start_catalog` started (raises ``catalog_data.CatalogError`` at the first
+    formula that does not read back); nothing to do once done."""
+    if build.catalog_chunks:
+        chunks, build.catalog_chunks = build.catalog_chunks, []
+        failures = [f for found in build.log.map_per_p(CATALOG_CHECK, chunks, catalog_data.read_back, cacheable=False)
+                    for f in found]
+        if failures:
+            build.catalog_json = None
+            raise catalog_data.CatalogError(failures[0])
+
+
+def make_catalog(build: Build) -> None:
+    """``build.catalog_json``, checked."""
+    start_catalog(build)
+    finish_catalog(build)
 
 
 def render_into(build: Build, directory: Path, only: tuple[str, ...] | None = None) -> list[str]:
@@ -348,16 +384,18 @@ def write_atomically(build: Build, target: Path) -> None:
             from derivations.output.roundtrip import certify_module
 
             emitted = (staging / "suslov_formulas.py").read_bytes()
-            # the catalog's srepr check in this process while the workers run the float-path checks
-            certify_module(build.log, build, staging, meanwhile=lambda: make_catalog(build))
+            # the catalog's srepr check queued behind the float-path checks in the workers
+            certify_module(build.log, build, staging, meanwhile=lambda: start_catalog(build))
             build.round_trip_done = True
             render_into(build, staging)
             if (staging / "suslov_formulas.py").read_bytes() != emitted:
                 raise RuntimeError("the emitted module changed after its round trip: the certified text is not the "
                                    "one written")
+        finish_catalog(build)   # render_into checked it already unless it started above
         write_manifest(staging)
         claim_output(target)   # again: a file a user put into the previous output meanwhile is not lost
     except BaseException:
+        build.log.cancel_prefetched()   # the catalog's check, if it was started: nothing runs on for a failed write
         shutil.rmtree(staging, ignore_errors=True)
         raise
     swap_in(staging, target)

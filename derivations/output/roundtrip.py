@@ -314,8 +314,9 @@ def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None) 
             for batch in log.map_per_p("round trip: bases beyond the kept ones", tasks, per_p_checks, cacheable=False,
                                        meanwhile=in_this_process):
                 certs += [log.record(c) for c in batch]
-    finally:
+    except BaseException:
         log.cancel_prefetched()   # a failure before the float checks were collected leaves none running
+        raise
     return certs
 
 
