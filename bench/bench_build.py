@@ -214,8 +214,11 @@ def growth(costs: dict) -> dict:
     for name, row in costs.items():
         classes = []
         parities = {p % 2 for p in row}
+        # a sampled cross-check's fit uses the p its recursion ran on (the residue's cheap physical-body rows of every
+        # p carry "p = N:" claims too, and would fit a law of their own above the threshold)
+        ran = set(cross_check_p_values(max(row))) if name in SAMPLED else set(row)
         for parity in sorted(parities, reverse=True):
-            points = sorted((p, s) for p, s in row.items() if p % 2 == parity)
+            points = sorted((p, s) for p, s in row.items() if p % 2 == parity and p in ran)
             fit = _fit(points)
             if fit is None:
                 continue

@@ -31,7 +31,7 @@ from derivations.core.options import (
     dense_prefix,
 )
 from derivations.output.cli import parser
-from derivations.sections import galois, residue
+from derivations.sections import galois
 from suslov.validated import local_behaviour
 
 EVERY_101 = list(range(1, 102))
@@ -93,14 +93,6 @@ def _theorem(p: int):
     exact = local_behaviour(2, 1, 0, Fraction(-1, p))
     assert exact.Lambda == p
     return exact
-
-
-@pytest.mark.parametrize("p", [200, 201])
-def test_frobenius_recursion_at_the_top_of_the_sample(p):
-    verdict = residue.logarithm_verdict(p)[0]
-    exact = _theorem(p)
-    assert verdict == ("no logarithms" if exact.meromorphic else "logarithms for every $d > 0$")
-    assert exact.meromorphic == (p % 2 == 1)
 
 
 @pytest.mark.parametrize("p", [200, 201])

@@ -61,6 +61,7 @@ from derivations.sections import first_integrals, galois, meromorphic, residue
 from suslov.kernel import phase, trig_series
 from suslov.kernel.contexts import FLOAT
 from suslov.runtime import basis as runtime_basis
+from suslov.validated import local_behaviour
 
 ROOT = Path(__file__).resolve().parents[1]
 P, P2 = 101, 201
@@ -170,6 +171,11 @@ def test_residue_logarithm_verdict(p):
     (mu = 0), non-zero for every d > 0 (the paper's 'no logarithms for every integer p' refuted for even p)."""
     verdict, detail, count, typeset, _ = residue.logarithm_verdict(p)
     assert count >= 1
+    # the cross-check agrees with the pole theorem (which decides every p; above p = 101 the build samples the
+    # recursion, and P2, P2 + 1 are the top of that sample): the body (2, 1, 0, -1/p) has Lambda = p
+    exact = local_behaviour(2, 1, 0, Fraction(-1, p))
+    assert exact.Lambda == p and exact.meromorphic == (p % 2 == 1)
+    assert verdict == ("no logarithms" if exact.meromorphic else "logarithms for every $d > 0$")
     if p % 2:
         assert verdict == "no logarithms" and typeset == [] and "vanish identically" in detail
     else:
