@@ -97,3 +97,22 @@ def test_round_trip_float_checks_are_identical_in_workers_and_in_one_process(def
     names = [name for name, _ in float_paths.tasks(module, default_build)]
     assert names.count("gamma_basis") == len(module.BASIS_PS) and names.count("first_integral") == len(module.INTEGRAL_PS)
     assert sum(1 for c in in_workers if c["claim"].startswith("p = ") and "gamma_basis" in c["claim"]) >= 2 * len(module.BASIS_PS)
+
+
+def test_a_fault_only_a_float_check_sees_stops_the_round_trip_in_workers_too(default_build, tmp_path):
+    """A tree whose module says sigma = +1 for p = 3 (the certified sigma is -1) passes the exact checks of this
+    process; the gamma_basis check finds it in the workers, and the round trip names it as one process does."""
+    import shutil
+    from pathlib import Path
+
+    from derivations.output.roundtrip import verify
+
+    tree = tmp_path / "tree"
+    shutil.copytree(Path(__file__).resolve().parent.parent / "generated", tree)
+    module = tree / "suslov_formulas.py"
+    text = module.read_text(encoding="utf-8")
+    assert text.count("_BASIS_SIGMA = {1: -1, 3: -1,") == 1
+    module.write_text(text.replace("_BASIS_SIGMA = {1: -1, 3: -1,", "_BASIS_SIGMA = {1: -1, 3: 1,"), encoding="utf-8")
+    in_workers, in_line = verify(default_build, tree, jobs=2), verify(default_build, tree, jobs=1)
+    assert in_workers is not None and in_workers.startswith("p = 3: gamma_basis_mp")
+    assert in_workers == in_line

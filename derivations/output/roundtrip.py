@@ -192,30 +192,41 @@ def basis_core_by_digest(module, p: int, digest: str) -> tuple:
     return certificate, (real.M, cplx.M)
 
 
+def _proved_numerators(module, p: int, digest: str) -> tuple:
+    """(the core's certificate, its numerators when its digest is the certified one, else None)."""
+    core, numerators = basis_core_by_digest(module, p, digest)
+    return core, numerators if core.outcome is Outcome.PASS else None
+
+
+def _private_checks(module, checks) -> list:
+    """The float-path checks ``(name, argument, numerators)`` (:func:`derivations.output.float_paths.run`) in a
+    private log, at 15 digits, their certificates handed over (keys left to the main log); a failed one is
+    returned with the others, and the main log raises when it records it, as in one process."""
+    from derivations.output import float_paths
+
+    private = CertificateLog(derivation=SECTION)
+    try:
+        with mpmath.workdps(15):
+            for name, argument, numerators in checks:
+                float_paths.run(private, module, name, argument, numerators)
+    except CertificationFailure:
+        pass
+    return private.handed_over()
+
+
 def per_p_checks(task) -> list:
     """Per-p work (run in a worker) for a p whose basis was certified in a worker: ``task = (directory,
     p, digest)``.  The core by fingerprint (:func:`basis_core_by_digest`), then the float-path checks
     of ``first_integral`` (proven: :mod:`derivations.proofs.integral_proof`) and ``gamma_basis``
-    (:mod:`derivations.output.float_paths`).  The module is
-    imported from the directory once per process, so the emitted code is what is checked, and the
-    directory must be visible to the worker (local processes; a Dask cluster on the same file
-    system).  Returns the certificates, keys left to the main log."""
-    from derivations.output import float_paths
-    from derivations.proofs import integral_proof
-
+    (:mod:`derivations.output.float_paths`), the latter's exact evaluation only from numerators proved equal to
+    the certified ones.  The module is imported from the directory once per process, so the emitted code is
+    what is checked, and the directory must be visible to the worker (local processes; a Dask cluster on the
+    same file system).  Returns the certificates, keys left to the main log."""
     directory, p, digest = task
     module = load_module_once(directory)
-    private = CertificateLog(derivation=SECTION)
-    core, numerators = basis_core_by_digest(module, p, digest)   # not recorded: no key, no derivation yet
-    try:
-        with mpmath.workdps(15):
-            if p in module.INTEGRAL_PS:
-                integral_proof.certificate(private, module, p)      # the proven bound (was sampled)
-            # the exact evaluation only from numerators proved equal to the certified ones
-            float_paths.check_gamma_basis(private, module, p, numerators if core.outcome is Outcome.PASS else None)
-    except CertificationFailure:
-        pass   # returned with the others: the main log raises when it records it, as in one process
-    return [core] + private.handed_over()
+    core, numerators = _proved_numerators(module, p, digest)   # not recorded: no key, no derivation yet
+    checks = ([("first_integral", p, None)] if p in module.INTEGRAL_PS else []) + [("gamma_basis", p, numerators)]
+    return [core] + _private_checks(module, checks)
 
 
 _modules: dict = {}
@@ -248,21 +259,10 @@ def float_check(task) -> list:
     their :func:`derivations.sections.meromorphic.numerators_digest` equals ``digest``, the certified
     numerators' (else none, and the proof that needs them fails).  Returns the certificates, keys left to the
     main log, which records them in the order of the tasks."""
-    from derivations.output import float_paths
-
     directory, name, argument, digest = task
     module = load_module_once(directory)
-    private = CertificateLog(derivation=SECTION)
-    numerators = None
-    if name == "gamma_basis":
-        core, numerators = basis_core_by_digest(module, argument, digest)
-        numerators = numerators if core.outcome is Outcome.PASS else None
-    try:
-        with mpmath.workdps(15):
-            float_paths.run(private, module, name, argument, numerators)
-    except CertificationFailure:
-        pass   # returned with the others: the main log raises when it records it, as in one process
-    return private.handed_over()
+    numerators = _proved_numerators(module, argument, digest)[1] if name == "gamma_basis" else None
+    return _private_checks(module, [(name, argument, numerators)])
 
 
 def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None) -> list:
