@@ -91,7 +91,7 @@ def parser() -> argparse.ArgumentParser:
     sim.add_argument("--out", help="output directory (required unless --explain)")
     sim.add_argument("--explain", action="store_true", help="print the plan and exit without computing")
     sim.add_argument("--quiet", action="store_true", help="no progress lines")
-    sim.add_argument("--workers", type=int, help="sweeps: local worker processes (default: all cores)")
+    sim.add_argument("--workers", type=int, help="sweeps: local worker processes (default: the cores this process may run on)")
     sim.add_argument("--yes", action="store_true",
                      help="sweeps: run even when above 200000 points or an hour of estimated work")
     sim.add_argument("--scheduler", help="sweeps: dask.distributed scheduler address (default: $SUSLOV_SCHEDULER)")

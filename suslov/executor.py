@@ -97,7 +97,11 @@ class ChunkStore:
 
 
 def default_workers() -> int:
-    return max(1, os.cpu_count() or 1)
+    """Worker processes when none are asked for: the cores this process may run on (:func:`cores`, its CPU
+    affinity), so that ``taskset -c 0 python build_formulas.py`` or a container limited to one CPU runs the per-p
+    work in line instead of starting processes that only compete for that core (``os.cpu_count()`` counts the
+    machine's cores, usable or not)."""
+    return cores()
 
 
 WORKER_MEMORY = 300 * 2**20   # resident memory of one worker with NumPy, mpmath and python-flint (measured: ~160 MB)
@@ -120,7 +124,7 @@ def cores() -> int:
     try:
         return max(1, len(os.sched_getaffinity(0)))
     except (AttributeError, OSError):
-        return default_workers()
+        return max(1, os.cpu_count() or 1)
 
 
 def worker_limit(requested: int | None, option: str = "--workers") -> tuple[int, str | None]:

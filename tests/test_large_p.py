@@ -5,14 +5,16 @@ while the tests ran the per-p certificates only at the default pmax 15.  Here ea
 called directly, with the inputs each section's ``run()`` passes it, at p = 101 and, where it takes a few seconds
 there, at p = 201; each test asserts the certificate's outcome, not only that nothing raised:
 
-* ``meromorphic.basis_for_p`` (a worker's certificates of one odd p's orthonormal basis);
+* ``meromorphic.basis_for_p`` (a worker's certificates of one odd p's orthonormal basis, constructed from the
+  recipe: the route of a build that emits no module) and ``meromorphic.genhip_for_p``;
 * ``residue.logarithm_verdict`` (Frobenius obstructions at t0 = i pi/2; the series' certificate for pmax 201):
   no logarithms for odd p, logarithms for every d > 0 for even p (the paper's Theorem 3.2 claims none for every
   p: refuted for even p, as expected);
 * ``galois.decide_logarithms``: Conjecture 1 (s1, s2 logarithmic exactly for even p, s3, s4 never);
 * ``first_integrals.certify_p`` with the derived field of ``special_case``;
-* the round trip: ``roundtrip.per_p_checks`` (the emitted core by fingerprint, the first-integral proof, both
-  gamma_basis proofs and the exact check of gamma_basis_mp) and ``certify_basis_core`` at 101 (at 201 they take
+* the round trip: ``roundtrip.per_p_checks`` (the emitted core's numerators certified directly, as a build
+  beyond p = 15 does, then the first-integral proof, both gamma_basis proofs and the exact check of
+  gamma_basis_mp) and ``certify_basis_core`` at 101 (at 201 they take
   about 25 s: only the parts of ``basis_proof`` that need no basis run there), ``certify_integral_core`` and
   ``integral_proof.certificate`` at 101 and 201.
 
@@ -20,7 +22,8 @@ The emitted module.  ``suslov.load_formulas(pmax=101)`` builds a module covering
 unless the per-user store has one, and the committed module refuses p outside ``INTEGRAL_PS`` / ``BASIS_PS``.  The
 module's code does not depend on pmax (``templates/suslov_formulas.py.j2``: only ``PMAX``, ``INTEGRAL_PS``,
 ``BASIS_PS`` and ``_BASIS_SIGMA`` do), so the fixture writes ``generated/suslov_formulas.py`` with the data lines
-a build certifying these p writes (sigma from ``basis_for_p``) and loads it as ``per_p_checks`` does
+a build certifying these p writes (sigma = -1, ``meromorphic_sigma.sigma_certificate``; the rotation test below checks it
+independently) and loads it as ``per_p_checks`` does
 (``roundtrip.load_module_once``).
 
 Independent routes for the expected values: the paper's theorems and the conjecture (as in
@@ -125,7 +128,7 @@ def emitted(basis101, tmp_path_factory):
     the first integral at p = 101 and 201."""
     text = (ROOT / "generated" / "suslov_formulas.py").read_text(encoding="utf-8")
     data = {"PMAX": str(P2), "INTEGRAL_PS": f"({P}, {P2})", "BASIS_PS": f"({P},)",
-            "_BASIS_SIGMA": repr({P: basis101["sigma"]})}
+            "_BASIS_SIGMA": repr({P: -1})}
     for name, value in data.items():
         text, count = re.subn(rf"^{name} = .*$", f"{name} = {value}", text, flags=re.MULTILINE)
         assert count == 1, f"{name}: not one data line in the generated module"
@@ -153,16 +156,17 @@ def field():
 
 @pytest.mark.parametrize("p", [P, P2])
 def test_meromorphic_basis_for_p_certifies(request, p):
-    """The worker's certificates of one odd p's basis (about 10 s at p = 201)."""
+    """A worker's certificates of one odd p's basis from the recipe (about 5 s at p = 201), and its genhip check."""
     outcome = request.getfixturevalue("basis101") if p == P else meromorphic.basis_for_p(p)
-    certs = outcome["certificates"]
+    certs = meromorphic.genhip_for_p(p) + outcome["certificates"]
     assert outcomes(certs) == [Outcome.PASS] * 6, [(c.label, c.detail) for c in certs]
     assert [c.label for c in certs] == ["pol_sol", "eq:gam3", "F_23_pol", "eq:ps", "gam1, gam2, gam3", "asymp"]
     assert all(str(c.claim).startswith(f"p = {p}:") for c in certs)
     # beyond KEEP_BASES the orthonormality is certified by conservation, as in a --pmax 101 build
     assert "conservation" in str(certs[4].method)
-    assert outcome["sigma"] == -1          # the docstring's sigma; the rotation test below checks it independently
-    assert len(outcome["terms"]) == 6 and min(outcome["terms"]) > 0 and len(outcome["digest"]) == 64
+    # asymp with the derived sigma = -1 (V/k -> (0, 1, -i)); the rotation test below checks it independently
+    assert "(0, 1, -i)" in str(certs[5].claim)
+    assert len(outcome["terms"]) == 6 and min(outcome["terms"]) > 0
 
 
 @pytest.mark.parametrize("p", [P, P + 1, P2, P2 + 1])
@@ -212,16 +216,21 @@ def test_first_integrals_certify_p(field, p):
 
 
 def test_roundtrip_per_p_checks_101(emitted, basis101):
-    """The worker's round-trip checks of p = 101, with the certifying worker's fingerprint (as the build passes)."""
+    """The worker's round-trip work for p = 101 with the derived sigma (as the build passes): the meromorphic
+    certificates made on the emitted core's numerators, the same claims and term counts as the recipe's basis
+    certified in this process, then the float-path checks."""
     directory, _ = emitted
-    certs = roundtrip.per_p_checks((str(directory), P, basis101["digest"]))
-    assert outcomes(certs) == [Outcome.PASS] * 5, [(str(c.claim)[:60], c.detail) for c in certs]
+    outcome = roundtrip.per_p_checks((str(directory), P, -1))
+    basis, certs = outcome["basis"], outcome["checks"]
+    assert outcomes(basis) == [Outcome.PASS] * 5, [(c.label, c.detail) for c in basis]
+    assert [str(c.claim) for c in basis] == [str(c.claim) for c in basis101["certificates"]]
+    assert "the emitted module's _basis_core" in str(basis[0].detail) and outcome["terms"] == basis101["terms"]
+    assert outcomes(certs) == [Outcome.PASS] * 4, [(str(c.claim)[:60], c.detail) for c in certs]
     claims = [str(c.claim) for c in certs]
     assert all(claim.startswith(f"p = {P}:") for claim in claims)
-    assert "exact core of gamma_basis reproduces the certified numerators" in claims[0] and str(certs[0].detail) == "identical"
-    assert "first_integral float64" in claims[1] and "gives the analysed sequence's bits" in str(certs[1].detail)
-    assert "double-double phase" in claims[2] and "ball phase" in claims[3]
-    assert "gamma_basis_mp equals the certified numerators" in claims[4]
+    assert "first_integral float64" in claims[0] and "gives the analysed sequence's bits" in str(certs[0].detail)
+    assert "double-double phase" in claims[1] and "ball phase" in claims[2]
+    assert "gamma_basis_mp equals the certified numerators" in claims[3]
 
 
 def test_roundtrip_exact_cores(module):

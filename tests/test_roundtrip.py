@@ -157,3 +157,120 @@ def test_verify_cli_on_committed_tree_and_on_a_mutated_copy(tmp_path):
 def test_verify_bad_directory_is_a_clear_error(tmp_path):
     result = run_cli("--verify", str(tmp_path), "--quiet")
     assert result.returncode == 2 and "no suslov_formulas.py" in result.stderr
+
+
+# ---------------------------------------------------------------- bases beyond the kept ones (p > 15)
+
+
+@pytest.fixture(scope="module")
+def build19(tmp_path_factory):
+    """A build of what the module needs at pmax 19 (one process) and its emitted module: p = 17, 19 are the bases
+    the meromorphic derivation leaves to the round trip (certified on the emitted core's numerators)."""
+    from derivations.core.options import BuildOptions
+    from derivations.output.pipeline import MODULE_NEEDS, derive, render_into
+
+    build = derive(BuildOptions(pmax=19, jobs=1), list(MODULE_NEEDS))
+    assert build.results["meromorphic"].exports["pending"] == [17, 19]
+    tree = tmp_path_factory.mktemp("pmax19")
+    render_into(build, tree, only=("__init__.py", "suslov_formulas.py"))
+    return build, tree
+
+
+def faulty_copy(tmp_path, tree, original, mutated):
+    copy = tmp_path / "tree"
+    shutil.copytree(tree, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    path = copy / "suslov_formulas.py"
+    text = path.read_text(encoding="utf-8")
+    assert text.count(original) == 1, f"mutation site not unique: {original!r}"
+    path.write_text(text.replace(original, mutated), encoding="utf-8")
+    return copy
+
+
+def in_workers(monkeypatch):
+    """The per-p phases of two values through the worker processes (PARALLEL_MIN is 16)."""
+    from derivations.core import certificates
+
+    monkeypatch.setattr(certificates, "PARALLEL_MIN", 1)
+
+
+def test_bases_beyond_15_are_certified_on_the_emitted_core(build19, monkeypatch):
+    """p = 17, 19: the meromorphic certificates are made in the round trip, on the emitted core's numerators, and
+    recorded as the derivation's (labels and claims as for a kept basis); the term counts handed back are those of
+    the recipe's basis constructed here; one process and the workers write the same log."""
+    from derivations.core.certificates import CertificateLog
+    from derivations.core.statement import say
+    from derivations.output.roundtrip import EMITTED_CORE, certify_module
+    from derivations.sections import meromorphic
+
+    build, tree = build19
+    logs, bases = {}, {}
+    for jobs in (1, 2):
+        if jobs == 2:
+            in_workers(monkeypatch)
+        logs[jobs], bases[jobs] = CertificateLog(workers=jobs), {}
+        certify_module(logs[jobs], build, tree, bases=bases[jobs])
+    assert [c.deterministic_record() for c in logs[1].certificates] == [c.deterministic_record() for c in logs[2].certificates]
+    assert bases[1] == bases[2] and sorted(bases[1]) == [17, 19]
+    by_key = {c.key: c for c in logs[1].certificates}
+    for p in (17, 19):
+        made = [by_key[k] for k in bases[1][p]["certificates"]]
+        assert [c.label for c in made] == ["eq:gam3", "F_23_pol", "eq:ps", "gam1, gam2, gam3", "asymp"]
+        assert all(c.derivation == "meromorphic" and c.claim.startswith(f"p = {p}:") for c in made)
+        assert str(made[0].detail) == str(say(EMITTED_CORE)) and "conservation" in str(made[3].method)
+        real, cplx = meromorphic.construct(p)
+        assert bases[1][p]["terms"] == [len(m) for m in real.M + cplx.M]
+    cores = [c for c in logs[1].certificates if "exact core of gamma_basis reproduces" in c.claim]
+    assert [int(str(c.claim).split(":")[0][4:]) for c in cores] == list(range(1, 16, 2))   # the kept ones only
+    # and the rows the build renders: completed once the round trip has certified them
+    assert all(row["terms"] == [] for row in build.results["meromorphic"].exports["rows"] if row["p"] > 15)
+
+
+def perturbed_core(line: str) -> tuple:
+    """The emitted ``_basis_core`` with ``line`` applied to its numerators at p = 17 (a mutation site)."""
+    return ("    return _basis_recipe.construct(p, ring)\n",
+            "    real, cplx = _basis_recipe.construct(p, ring)\n    if p == 17:\n" + line + "    return real, cplx\n")
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+@pytest.mark.parametrize("line", ["        real.M[1] = 3 * real.M[1]\n", "        cplx.M[1] = cplx.M[1] + ring.x**3\n"],
+                         ids=["gamma1-component-2-times-3", "V2-plus-x3"])
+def test_a_perturbed_emitted_core_beyond_15_is_refused(build19, tmp_path, monkeypatch, jobs, line):
+    """The emitted ``_basis_core`` changes one numerator at p = 17: no certified basis is compared with it any more,
+    so the certificates made on it must refuse it (numerators that solve no Poisson equation), in one process and in
+    the workers, with the same message.  The first perturbation passes every float-path check (they evaluate the
+    numerators the core gives, and a second component of gamma^(1) three times too large keeps the parity, the degree
+    and sigma): only the certificates on the core see it (measured: with them skipped the round trip passes)."""
+    build, tree = build19
+    if jobs == 2:
+        in_workers(monkeypatch)
+    problem = verify(build, faulty_copy(tmp_path, tree, *perturbed_core(line)), jobs=jobs)
+    assert problem is not None and problem.startswith("p = 17: gammaI and the complex solution"), problem
+    assert "Poisson equations" in problem and "emitted module's _basis_core" in problem
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_sigma_plus_one_beyond_15_is_refused(build19, tmp_path, monkeypatch, jobs):
+    """The emitted module says sigma = +1 for p = 17 (derived and certified: -1): the exact check of gamma_basis_mp
+    against the certified numerators refuses it, in one process and in the workers."""
+    build, tree = build19
+    if jobs == 2:
+        in_workers(monkeypatch)
+    problem = verify(build, faulty_copy(tmp_path, tree, "15: -1, 17: -1, 19: -1}", "15: -1, 17: 1, 19: -1}"), jobs=jobs)
+    assert problem is not None and problem.startswith("p = 17: gamma_basis_mp"), problem
+
+
+def test_a_derived_sigma_the_numerators_contradict_fails_the_round_trip(build19, monkeypatch):
+    """Had the derivation emitted sigma = +1 for p = 17, the asymp certificate on the emitted core's numerators (which
+    give -1) fails, and the round trip stops there."""
+    from derivations.core.certificates import Outcome
+    from derivations.output.roundtrip import certify_emitted_basis, load_module
+
+    build, tree = build19
+    module = load_module(tree)
+    certs, numerators, _ = certify_emitted_basis(module, 17, 1)
+    assert [c.outcome for c in certs] == [Outcome.PASS] * 4 + [Outcome.FAIL] and numerators is None
+    assert "sigma = -1 from the numerators" in str(certs[-1].detail)
+    assert [c.outcome for c in certify_emitted_basis(module, 17, -1)[0]] == [Outcome.PASS] * 5
+    monkeypatch.setitem(build.results["meromorphic"].exports["sigma"], 17, 1)
+    problem = verify(build, tree, jobs=1)
+    assert problem is not None and problem.startswith("p = 17: gammaI tends to"), problem

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import functools
 import tokenize
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from io import StringIO
 
 import sympy as sp
@@ -303,6 +303,15 @@ class Ring:
     groups: tuple           # (("(" or "["), (SymPy objects...)) in order
     relations: tuple = ()
     note: "Statement | str" = ""
+    source: str = field(default="", compare=False, repr=False)   # the name :func:`ring` read it from
+
+    def __reduce__(self):
+        # pickled as the name it was read from (a Statement's parts go to worker processes and back): the
+        # parts themselves are SymPy objects made with evaluate=False, which unpickling evaluates, so the
+        # relation i^2 + 1 of Q[x,d,i]/(i^2+1), i the imaginary unit, came back as 0
+        if self.source:
+            return (ring, (self.source,))
+        return (Ring, (self.base, self.groups, self.relations, self.note))
 
     def text(self) -> str:
         out = self.base + "".join(
@@ -364,7 +373,8 @@ def ring(name: str) -> Ring:
         relations = tuple(_items(groups.pop()[1]))
     if rest and not rest.startswith(" "):
         raise ValueError(f"ring {name!r}: unexpected {rest!r} after the ring")
-    return Ring(name[0], tuple((o, tuple(_items(body))) for o, body in groups), relations, say(rest) if rest else "")
+    return Ring(name[0], tuple((o, tuple(_items(body))) for o, body in groups), relations, say(rest) if rest else "",
+                source=name)
 
 
 # -- statements -----------------------------------------------------------------------------------

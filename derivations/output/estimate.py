@@ -20,13 +20,13 @@ scale is measured here.
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 from derivations.core.options import CROSS_CHECK_PMAX, cross_check_p_values
 from derivations.sections.galois import (
     GALOIS_PMAX,  # galois decides the conjecture for p <= max(pmax, GALOIS_PMAX)
 )
+from suslov.executor import default_workers
 
 MIN_CALIBRATION = 0.02   # the time left is said once this share of the prediction has finished
 
@@ -51,7 +51,7 @@ def estimate_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH,
         base_run = max((r for r in data["runs"] if r["jobs"] == 1), key=lambda r: r["pmax"])
     except (OSError, ValueError, KeyError):
         return None
-    workers = max(1, workers or os.cpu_count() or 1)
+    workers = max(1, workers or default_workers())
     per_p_total, measured_total = 0.0, 0.0
     for name, g in growth.items():
         share = 1.0 / workers if name in PARALLEL else 1.0
@@ -85,7 +85,7 @@ def predicted_seconds(pmax: int, workers: int | None = None, bench: Path = BENCH
         run = max(below, key=lambda r: r["pmax"]) if below else min(runs, key=lambda r: r["pmax"])
     except (OSError, ValueError, KeyError, TypeError):
         return None
-    workers = max(1, workers or os.cpu_count() or 1) if run["jobs"] != 1 else 1
+    workers = max(1, workers or default_workers()) if run["jobs"] != 1 else 1
 
     def moved(name: str) -> float:
         share = 1.0 / workers if name in PARALLEL else 1.0

@@ -283,8 +283,9 @@ def check_load_certificates(log: CertificateLog, module, pmax: int) -> Certifica
 
 def tasks(module, build, skip: set = frozenset()) -> list[tuple[str, object]]:
     """Every float-path check as (name, argument), in the order the round trip records them: one per function,
-    and one per p for the per-p functions, except the p in ``skip`` (bases certified in workers:
-    :func:`derivations.output.roundtrip.per_p_checks` runs these same checks for them).  Plain data, so that
+    and one per p for the per-p functions, except the p in ``skip`` (the bases beyond the kept ones, certified on
+    the emitted core by :func:`derivations.output.roundtrip.per_p_checks`, which runs these same checks for them
+    after).  Plain data, so that
     :func:`run` can take a check to a worker process (the argument of a ``gamma_basis`` check is its p; the
     numerators are the caller's to supply; the p are the module's own ``INTEGRAL_PS`` and ``BASIS_PS``)."""
     matrix = build.results["kovalevskaya"].exports["matrix"]

@@ -28,10 +28,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from derivations.core.certificates import CertificateLog, Outcome
-from derivations.core.statement import say, text
 from derivations.core.emit import emitted_formulas
-from derivations.core.options import BuildOptions
 from derivations.core.notation import index_rows
+from derivations.core.options import BuildOptions
+from derivations.core.statement import say, text
 from derivations.output import catalog_data, figures, public_api
 from derivations.output.pdf import is_byproduct
 from derivations.output.render import render
@@ -329,6 +329,18 @@ def render_into(build: Build, directory: Path, only: tuple[str, ...] | None = No
                       "cache_report.json"]
 
 
+def certify_pending_bases(build: Build) -> None:
+    """The meromorphic bases the derivation left to the round trip (p > KEEP_BASES), certified from the recipe
+    instead (:func:`derivations.sections.meromorphic.certify_pending`), for a build that runs no round trip:
+    one that emits no module (``--only`` without the module's derivations) or writes nothing.  Nothing to do
+    when none are pending (the round trip certified them, or pmax <= KEEP_BASES)."""
+    result = build.results.get("meromorphic")
+    if result is not None and result.exports.get("pending"):
+        from derivations.sections.meromorphic import certify_pending
+
+        certify_pending(build.log, result)
+
+
 def write_manifest(directory: Path) -> Path:
     """The tree's last file (:mod:`suslov.manifest`): the SHA-256 of every emitted, non-volatile file, so the
     loader can refuse a tree changed after the build.  Written into the staging directory, before the swap."""
@@ -376,16 +388,22 @@ def write_atomically(build: Build, target: Path) -> None:
     try:
         module_first = ("__init__.py", "suslov_formulas.py")
         if build.round_trip_done or "suslov_formulas.py" not in render_into(build, staging, only=module_first):
+            certify_pending_bases(build)   # no module, no round trip: the bases beyond the kept ones from the recipe
             render_into(build, staging)
         else:
             # certify the module as emitted (it and certificates.json are all the round trip reads; the module's
             # text does not depend on the round trip's certificates), then render everything, so the round-trip
             # certificates are in every output
             from derivations.output.roundtrip import certify_module
+            from derivations.sections.meromorphic import complete_row
 
             emitted = (staging / "suslov_formulas.py").read_bytes()
-            # the catalog's srepr check queued behind the float-path checks in the workers
-            certify_module(build.log, build, staging, meanwhile=lambda: start_catalog(build))
+            # the catalog's srepr check queued behind the float-path checks in the workers; the bases beyond the
+            # kept ones certified on the emitted core's numerators, their rows completed before the documents
+            bases = {}
+            certify_module(build.log, build, staging, meanwhile=lambda: start_catalog(build), bases=bases)
+            for p, done in sorted(bases.items()):
+                complete_row(build.results["meromorphic"], p, done["certificates"], done["terms"])
             build.round_trip_done = True
             render_into(build, staging)
             if (staging / "suslov_formulas.py").read_bytes() != emitted:

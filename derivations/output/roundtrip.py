@@ -13,9 +13,15 @@ with ``--verify DIR``, from any generated tree) and certifies the module itself:
 2. **Shared recipes (exact, every p).**  ``_integral_core(p, ring)`` and
    ``_basis_core(p, ring)`` of the module are run on the build's python-flint rings
    (symbolic d) and must equal the objects the derivations certified, polynomial by
-   polynomial; ``first_integral_coefficients(p, 3/7)`` must equal the certified
+   polynomial (the first integrals for every p, the bases the meromorphic derivation keeps,
+   p <= 15); ``first_integral_coefficients(p, 3/7)`` must equal the certified
    numerators evaluated at d = 3/7 and divided by their certified denominators (exact
-   Fractions), which checks the module's own scaling.
+   Fractions), which checks the module's own scaling.  Beyond p = 15 no basis is certified
+   before the module is emitted: :func:`per_p_checks` certifies the numerators of the emitted
+   ``_basis_core(p, BASIS_RING)`` themselves (``meromorphic.certify_numerators``: eq:gam3,
+   F_23_pol, eq:ps, gam1-gam3, asymp; recorded as the meromorphic derivation's certificates, in
+   the rows of its basis table), and asymp requires their sigma to be the one the module was
+   emitted with (``meromorphic_sigma.sigma_certificate``, certified for every odd p before).
 3. **Float paths (numeric evidence, labelled so).**  Each float64 function is compared
    with its mpmath twin at seeded points including the hard cases (large |t|, small and
    large d, p near odd integers, large omega), for every p in range, against the error
@@ -179,14 +185,15 @@ def certify_basis_core(log: CertificateLog, module, objects: dict) -> list:
 
 def basis_core_by_digest(module, p: int, digest: str) -> tuple:
     """The emitted core's numerators for p against :func:`derivations.sections.meromorphic.numerators_digest` of
-    the basis certified in another process: (certificate, numerators), the certificate returned, not
-    recorded (the caller records it in p order), the numerators as (real, complex) lists."""
+    the basis certified in another process (a kept basis, p <= KEEP_BASES, certified in the main process, for a
+    float-path check in a worker: :func:`float_check`): (certificate, numerators), the certificate returned,
+    not recorded, the numerators as (real, complex) lists."""
     from derivations.sections.meromorphic import numerators_digest
 
     with stopwatch() as elapsed:
         real, cplx = module._basis_core(p, BASIS_RING)
         same = numerators_digest(real.M, cplx.M) == digest
-    method = "equal `SHA-256` digests of the numerators as `python-flint` prints them (the certifying worker's and the emitted core's)"
+    method = "equal `SHA-256` digests of the numerators as `python-flint` prints them (the certified basis's and the emitted core's)"
     certificate = Certificate(_core_claim(p), "round trip", method, Outcome.PASS if same else Outcome.FAIL, elapsed[0],
                               sum(len(m) for m in real.M + cplx.M), "identical" if same else "differs")
     return certificate, (real.M, cplx.M)
@@ -196,6 +203,32 @@ def _proved_numerators(module, p: int, digest: str) -> tuple:
     """(the core's certificate, its numerators when its digest is the certified one, else None)."""
     core, numerators = basis_core_by_digest(module, p, digest)
     return core, numerators if core.outcome is Outcome.PASS else None
+
+
+EMITTED_CORE = "the numerators of the emitted module's `_basis_core` (round trip)"
+
+
+def certify_emitted_basis(module, p: int, sigma: int) -> tuple:
+    """The meromorphic derivation's certificates of one odd p > KEEP_BASES made on the emitted core's numerators
+    (``module._basis_core(p, BASIS_RING)``, the build's exact ring): :func:`derivations.sections.meromorphic.
+    certify_numerators` (eq:gam3, F_23_pol, eq:ps, orthonormality, asymp with the ``sigma`` the module was
+    emitted with).  Returns (certificates, numerators, term counts): the certificates in a private log of the
+    meromorphic derivation, handed over (keys and derivation left to the main log, which records them as the
+    meromorphic derivation's); the numerators (real, complex lists) only when every certificate passed, else
+    None (the failed certificate stops the round trip where it is recorded: :func:`per_p_checks` then runs no
+    float-path check on numerators nobody certified)."""
+    from derivations.sections import meromorphic
+
+    private = CertificateLog(derivation=meromorphic.NAME)
+    numerators, terms = None, []
+    try:
+        with stopwatch() as elapsed:
+            real, cplx = module._basis_core(p, BASIS_RING)
+        meromorphic.certify_numerators(private, p, real, cplx, sigma=sigma, seconds=elapsed[0], origin=EMITTED_CORE)
+        numerators, terms = (real.M, cplx.M), [len(m) for m in real.M + cplx.M]
+    except CertificationFailure:
+        pass
+    return private.handed_over(), numerators, terms
 
 
 def _private_checks(module, checks) -> list:
@@ -214,19 +247,24 @@ def _private_checks(module, checks) -> list:
     return private.handed_over()
 
 
-def per_p_checks(task) -> list:
-    """Per-p work (run in a worker) for a p whose basis was certified in a worker: ``task = (directory,
-    p, digest)``.  The core by fingerprint (:func:`basis_core_by_digest`), then the float-path checks
-    of ``first_integral`` (proven: :mod:`derivations.proofs.integral_proof`) and ``gamma_basis``
-    (:mod:`derivations.output.float_paths`), the latter's exact evaluation only from numerators proved equal to
-    the certified ones.  The module is imported from the directory once per process, so the emitted code is
-    what is checked, and the directory must be visible to the worker (local processes; a Dask cluster on the
-    same file system).  Returns the certificates, keys left to the main log."""
-    directory, p, digest = task
+def per_p_checks(task) -> dict:
+    """Per-p work (run in a worker) for an odd p > KEEP_BASES, whose basis no process has certified yet:
+    ``task = (directory, p, sigma)``.  The emitted core's numerators certified directly
+    (:func:`certify_emitted_basis`: the meromorphic certificates of p, on what the module computes), then the
+    float-path checks of ``first_integral`` (proven: :mod:`derivations.proofs.integral_proof`) and ``gamma_basis``
+    (:mod:`derivations.output.float_paths`), the latter's exact evaluation only on numerators that passed.  The
+    module is imported from the directory once per process, so the emitted code is what is checked, and the
+    directory must be visible to the worker (local processes; a Dask cluster on the same file system).
+
+    Returns plain data: ``{"basis": certificates, "terms": term counts, "checks": certificates}``, keys left to
+    the main log (the basis certificates recorded as the meromorphic derivation's, the checks as the round trip's)."""
+    directory, p, sigma = task
     module = load_module_once(directory)
-    core, numerators = _proved_numerators(module, p, digest)   # not recorded: no key, no derivation yet
+    basis, numerators, terms = certify_emitted_basis(module, p, sigma)
+    if numerators is None:   # a basis certificate failed: it stops the round trip where it is recorded, before these
+        return {"basis": basis, "terms": terms, "checks": []}
     checks = ([("first_integral", p, None)] if p in module.INTEGRAL_PS else []) + [("gamma_basis", p, numerators)]
-    return [core] + _private_checks(module, checks)
+    return {"basis": basis, "terms": terms, "checks": _private_checks(module, checks)}
 
 
 _modules: dict = {}
@@ -265,7 +303,7 @@ def float_check(task) -> list:
     return _private_checks(module, [(name, argument, numerators)])
 
 
-def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None) -> list:
+def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None, bases: dict | None = None) -> list:
     """All round-trip certificates for the module in ``directory`` (raises CertificationFailure);
     ``meanwhile()``, the caller's own work, runs in this process once the float-path checks are started.
 
@@ -273,22 +311,26 @@ def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None) 
     (:func:`derivations.output.float_paths.tasks`) start at once in the worker processes
     (``CertificateLog.prefetch``; in this process when there are none); meanwhile this process
     certifies the emitted formulas and the exact cores against the objects kept here, then records
-    the float-path certificates in their order and certifies the run-time routes.  The p whose
-    bases were certified in workers get :func:`per_p_checks` through ``CertificateLog.map_per_p``
-    (all cores, largest p first, recorded in p order), after everything above: the log is the one a
-    single process writes.
+    the float-path certificates in their order and certifies the run-time routes.  The p > KEEP_BASES,
+    whose bases the meromorphic derivation left pending (``exports["pending"]``), get :func:`per_p_checks`
+    through ``CertificateLog.map_per_p`` (largest p first, recorded in p order), after everything above: the
+    emitted core's numerators certified directly (recorded as the meromorphic derivation's certificates),
+    then the float-path checks of that p.  ``bases``, when given, receives for each such p the keys of its
+    basis certificates and the numerators' term counts (the build completes its basis table with them:
+    :func:`derivations.sections.meromorphic.complete_row`).  The log is the one a single process writes.
     """
     from derivations.core.emit import emitted_formulas
     from derivations.output import float_paths, runtime_routes
+    from derivations.sections.meromorphic import NAME as MEROMORPHIC
     from derivations.sections.meromorphic import numerators_digest
 
     module = load_module(directory)
     exports = build.results["meromorphic"].exports
-    digests = exports.get("digests", {})
+    pending = list(exports.get("pending", ()))
     kept = exports["objects"]
     checks = [(str(directory), name, argument,
                numerators_digest(*kept[argument]) if name == "gamma_basis" and argument in kept else "")
-              for name, argument in float_paths.tasks(module, build, skip=set(digests))]
+              for name, argument in float_paths.tasks(module, build, skip=set(pending))]
     log.prefetch(FLOAT_CHECKS, checks, float_check, cacheable=False)
     in_workers = FLOAT_CHECKS in log.prefetched
     if meanwhile is not None:
@@ -305,15 +347,22 @@ def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None) 
             for batch in log.map_per_p(FLOAT_CHECKS, checks, float_check, cacheable=False):
                 certs.extend(log.record(c) for c in batch)
         else:
-            certs.extend(float_paths.certify(log, module, build, skip=set(digests)))
+            certs.extend(float_paths.certify(log, module, build, skip=set(pending)))
         certs.extend(runtime_routes.certify(log, module, build))   # every public route, independent references
 
     try:
         with log.section(SECTION), mpmath.workdps(15):
-            tasks = [(str(directory), p, digest) for p, digest in sorted(digests.items())]
-            for batch in log.map_per_p("round trip: bases beyond the kept ones", tasks, per_p_checks, cacheable=False,
-                                       meanwhile=in_this_process):
-                certs += [log.record(c) for c in batch]
+            tasks = [(str(directory), p, exports["sigma"][p]) for p in pending]
+            outcomes = log.map_per_p("round trip: bases beyond the kept ones", tasks, per_p_checks, cacheable=False,
+                                     meanwhile=in_this_process)
+            for p, outcome in zip(pending, outcomes):
+                recorded = []
+                for certificate in outcome["basis"]:
+                    certificate.derivation = MEROMORPHIC   # the derivation's claims, made on the emitted core
+                    recorded.append(log.record(certificate))
+                if bases is not None:
+                    bases[p] = {"certificates": [c.key for c in recorded], "terms": outcome["terms"]}
+                certs += recorded + [log.record(c) for c in outcome["checks"]]
     except BaseException:
         log.cancel_prefetched()   # a failure before the float checks were collected leaves none running
         raise

@@ -43,13 +43,32 @@ for this certificate at p = 51, where the expanded products were 95% of the per-
 ``gamma^(2) + i sigma gamma^(3) = Gamma`` with ``sigma`` chosen so that the matrix
 of rows gamma^(1), gamma^(2), gamma^(3) has determinant +1.
 
+Where each odd p is certified
+-----------------------------
+* p <= KEEP_BASES (15): here, in the main process (:func:`certify_p`: :func:`construct`, then
+  :func:`certify_numerators`); these Basis objects feed the printed comparisons (p = 1, 3; section 6.2) and the
+  written-out formulas, and the round trip compares the emitted core with them, polynomial by polynomial.
+* p > KEEP_BASES: here only ``pol_sol`` (:func:`genhip_check`, in workers) and, once for every p,
+  ``sigma = -1`` (:func:`sigma_certificate`, label ``asymp``: the recipe's own ``complete`` run with p and d
+  symbolic on ``g1 = x P(x^2)`` gives ``V3(0) = -i V2(0)``, an exact zero test); the module is emitted with
+  that sigma, and the bases are left pending (``exports["pending"]``).  The round trip
+  (:func:`derivations.output.roundtrip.per_p_checks`) then certifies the numerators the *emitted* module
+  computes (``_basis_core(p, BASIS_RING)``) with the same :func:`certify_numerators`: eq:gam3, F_23_pol,
+  eq:ps, gam1-gam3 (by conservation) and asymp, which also requires the numerators' sigma to be the emitted
+  one; the certificates are recorded as this derivation's and the rows of the basis table
+  (``templates/basis_tables.tex.j2``) are completed from them (:func:`complete_row`) before the documents are
+  rendered.  What the module computes is what is certified, and each basis is built once: before, a worker
+  built and certified it here and sent its :func:`numerators_digest`, and the round trip built it again
+  and compared digests.  A build that emits no module (``--only`` without the module's derivations, or
+  without an output) certifies the pending bases from the recipe instead (:func:`certify_pending`).
+
 Cost at large p (one core, p = 201, ``bench/bench_basis_construct.py``): the construction (the recipe on
 ``BASIS_RING``, whose ``mul_red`` forms ``F * Fhat`` by one Kronecker-packed univariate product: see
 ``suslov/recipes/flint_rings.py``) 4.6 s -> 3.0 s, the third-order and Poisson zero tests in coordinates
 (:func:`poisson_hold`, ``meromorphic_ring.third_order_holds``) 3.5 s -> 2.2 s, the orthonormality
 certificate (products of the values at x = 0 by ``mul_red``) 0.6 s -> 0.1 s, :func:`numerators_digest`
-(the same bytes) 1.2 s -> 1.0 s: 9.9 s -> 6.3 s per p for :func:`basis_for_p`, with every certified object,
-certificate record and digest unchanged.
+(the same bytes) 1.2 s -> 1.0 s.  Certifying the emitted core in the round trip instead of a second
+construction saves, per p, one construction and both digests (the build's times: ``docs/benchmarks.md``).
 """
 from __future__ import annotations
 
@@ -103,6 +122,11 @@ from derivations.sections.meromorphic_ring import (  # noqa: F401  (re-exported:
     split_i,
     third_order_holds,
     third_order_residual,
+)
+from derivations.sections.meromorphic_sigma import (  # noqa: F401 (sigma_values: tests)
+    SIGMA,
+    sigma_certificate,
+    sigma_values,
 )
 from derivations.sections.printed_examples import compare_printed_examples
 from suslov.recipes import basis as recipe
@@ -166,23 +190,46 @@ def construct(p: int) -> tuple[Solution, Solution]:
 
 
 def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
-    """The certificates of one odd p's basis (see the module docstring).
+    """The certificates of one odd p's basis, constructed here (:func:`construct`, the shared recipe): see
+    :func:`certify_numerators`; the construction's time is counted in the first certificate's, as before."""
+    with stopwatch() as elapsed:
+        real, cplx = construct(p)
+    return certify_numerators(log, p, real, cplx, direct, seconds=elapsed[0])
 
-    Orthonormality is certified ``direct``-ly (the four product identities expanded, exact zero
-    tests; the default for p <= KEEP_BASES) or by conservation (the default beyond: the products
-    of two solutions of a G-skew linear system are constant in t, see
-    :func:`conservation_certificate`; 50 times cheaper at p = 51, where the expanded products
-    dominate the whole per-p cost).
+
+def certify_numerators(log: CertificateLog, p: int, real: Solution, cplx: Solution, direct: bool | None = None,
+                       sigma: int | None = None, seconds: float = 0.0, origin: str = "") -> Basis:
+    """The certificates of one odd p's basis on the numerators ``real``, ``cplx`` (see the module docstring):
+    exact division (eq:gam3), the third-order equation (F_23_pol), the Poisson equations (eq:ps),
+    orthonormality (gam1, gam2, gam3) and the limits (asymp), in this order.
+
+    The numerators are those of :func:`construct` (p <= KEEP_BASES, and builds that emit no module) or of the
+    emitted module's ``_basis_core(p, BASIS_RING)`` (the round trip, :func:`derivations.output.roundtrip.per_p_checks`,
+    for every p > KEEP_BASES: what the module computes is what is certified).  Orthonormality is certified
+    ``direct``-ly (the four product identities expanded, exact zero tests; the default for p <= KEEP_BASES) or
+    by conservation (the default beyond: the products of two solutions of a G-skew linear system are constant
+    in t, see :func:`conservation_certificate`; 50 times cheaper at p = 51, where the expanded products
+    dominate the whole per-p cost).  ``sigma``: the value the build derived and emitted before these
+    numerators were certified (:func:`sigma_certificate`); asymp then also requires the numerators' sigma to
+    be that one (None: either sign).  ``seconds``: the construction's time, counted in the first certificate;
+    ``origin``: where the numerators come from, said in the first certificate's detail and in any failure's.
     """
     direct = p <= KEEP_BASES if direct is None else direct
     certs = []
+
+    def detail(ok: bool, text: str = "") -> str:
+        # the origin of the numerators on a failure (the first certificate says it always)
+        if ok or not origin:
+            return text
+        return f"{text}; on {origin}" if text else origin
+
     with stopwatch() as elapsed:
-        real, cplx = construct(p)
-        ok_div = real.divisions_exact and cplx.divisions_exact
+        ok_div = bool(getattr(real, "divisions_exact", False) and getattr(cplx, "divisions_exact", False))
     certs.append(log.record(Certificate(
         f"$p = {p}$: the components from eq:gam3 are polynomials over $(1+x^2)^p$: exact division by $x$ and $x^2-1$ "
         "(no removable singularity at $t = 0$)", "eq:gam3", Statement("exact division in ", ring(DOMAIN)),
-        Outcome.PASS if ok_div else Outcome.FAIL, elapsed[0], sum(len(m) for m in real.M + cplx.M))))
+        Outcome.PASS if ok_div else Outcome.FAIL, seconds + elapsed[0], sum(len(m) for m in real.M + cplx.M),
+        origin if ok_div else detail(False))))
     with stopwatch() as elapsed:
         # in coordinates (meromorphic_ring); the residual itself only to report its size when it is not zero
         first = DD_split(split_i(cplx.M[0]), p, 1)
@@ -191,14 +238,15 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
     certs.append(log.record(Certificate(
         f"$p = {p}$: $g1 = e^(i (p/d) t) x P_p(x^2)/(1+x^2)^p = sqrt(z-1) F2(z)$ (F_23_pol) solves eq:genhipprep; with the "
         "certified reduction to eq:genhip, $F2$ and its conjugate $F3$ solve eq:genhip", "F_23_pol",
-        Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL, elapsed[0], size)))
+        Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL, elapsed[0], size,
+        detail(ok))))
     with stopwatch() as elapsed:
         ok = poisson_hold(real) and poisson_hold(cplx, first)   # first = DD(M1) of the complex solution
         size = 0 if ok else sum(len(r) for r in poisson_residuals(real) + poisson_residuals(cplx))
     certs.append(c_poisson := log.record(Certificate(
         f"$p = {p}$: $gammaI$ and the complex solution $e^(i(p/d)t) V$ solve the Poisson equations eq:ps with $omega$ "
         "from omegas", "eq:ps", Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL, elapsed[0],
-        size, "6 numerator identities")))
+        size, detail(ok, "6 numerator identities"))))
 
     with stopwatch() as elapsed:
         K = 2 * p * p  # M = (2p^2 N1, M2, p M3), N1 over Den1
@@ -232,22 +280,25 @@ def certify_p(log: CertificateLog, p: int, direct: bool | None = None) -> Basis:
               "non-zero are zero (a non-zero constant would make $e^(i k a t)$ converge as $t$ tends to $-oo$)")
     certs.append(log.record(Certificate(
         f"$p = {p}$: $abs(gammaI) = 1$, $inner(V, V) = 0$, $abs(V)^2 = 2 abs(k)^2$, $inner(gammaI, V) = 0$: $gammaI$, Re and Im of $V/k$ orthonormal",
-        "gam1, gam2, gam3", method, Outcome.PASS if ok else Outcome.FAIL, elapsed[0], size, "4 identities")))
+        "gam1, gam2, gam3", method, Outcome.PASS if ok else Outcome.FAIL, elapsed[0], size,
+        detail(ok, "4 identities"))))
 
     with stopwatch() as elapsed:
         v3 = at_x(cplx.M[2], 0)
-        sigma = 1 if red(v3 - I * k).is_zero() else (-1 if red(v3 + I * k).is_zero() else 0)
+        found = 1 if red(v3 - I * k).is_zero() else (-1 if red(v3 + I * k).is_zero() else 0)
         lim_minus = [at_x(m, 0) for m in real.M]
         top = 2 * p
         lim_plus = [_coefficient_x(m, top) for m in real.M]
-        ok = (sigma != 0 and (lim_minus[0] + scale_real).is_zero() and lim_minus[1].is_zero()
+        ok = (found != 0 and not k.is_zero() and (lim_minus[0] + scale_real).is_zero() and lim_minus[1].is_zero()
               and lim_minus[2].is_zero() and (lim_plus[0] - scale_real).is_zero() and lim_plus[1].is_zero()
               and lim_plus[2].is_zero() and at_x(cplx.M[0], 0).is_zero())
+        ok_sigma = sigma is None or found == sigma
     certs.append(log.record(Certificate(
         f"$p = {p}$: $gammaI$ tends to $(-1,0,0)$ as $t$ tends to $-oo$ and to $(1,0,0)$ as $t$ tends to $oo$; $V/k$ tends to "
-        f"$(0, 1, {'' if sigma > 0 else '-'}i)$ as $t$ tends to $-oo$", "asymp", Statement("exact evaluation in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL,
-        elapsed[0], 0)))
-    return Basis(p, real, cplx, k, scale_real, sigma, certs)
+        f"$(0, 1, {'' if found > 0 else '-'}i)$ as $t$ tends to $-oo$", "asymp", Statement("exact evaluation in ", ring(DOMAIN)),
+        Outcome.PASS if ok and ok_sigma else Outcome.FAIL, elapsed[0], 0,
+        detail(ok and ok_sigma, "" if ok_sigma else f"$sigma = {found}$ from the numerators, ${sigma}$ derived and emitted"))))
+    return Basis(p, real, cplx, k, scale_real, found, certs)
 
 
 def _coefficient_x(poly, degree: int):
@@ -302,15 +353,18 @@ def basis_expr(written: list, p: int) -> sp.Tuple:
                       for k, vector in enumerate((first, second, third), 1) for j, value in enumerate(vector, 1)])
 
 
-KEEP_BASES = 15   # bases up to this p are built in the main process and kept (printed examples, tables)
+KEEP_BASES = 15   # bases up to this p are built in the main process and kept (printed examples, tables); beyond,
+#                   the round trip certifies the emitted core's (or certify_pending the recipe's, without a module)
 DIGEST_CHUNK = 2048   # coefficients per hashed piece of text (256 to 16384 measured within 10% of each other)
 _NUMERATOR, _DENOMINATOR = attrgetter("p"), attrgetter("q")
 
 
 def numerators_digest(real_M: list, complex_M: list) -> str:
-    """SHA-256 of the six numerators' terms: the fingerprint by which the round trip compares the emitted
-    module's core with bases certified in another process (at p = 101 the numerators print as 31 MB in
-    decimal; shipping them between processes cost more than certifying them).
+    """SHA-256 of the six numerators' terms: the fingerprint by which a worker process running the round trip's
+    float-path check of a kept basis (p <= KEEP_BASES, certified in the main process) takes the emitted core's
+    numerators as the certified ones (``roundtrip.float_check``; shipping the polynomials is what it avoids: at
+    p = 101 they print as 31 MB in decimal).  The bases beyond KEEP_BASES need no fingerprint: the round trip
+    certifies the emitted core's numerators themselves (see the module docstring).
 
     Per numerator: its number of terms and its exponent vectors as 64-bit integers in python-flint's term
     order (the count first, so the fixed-width exponents cannot run into the printed text), then its
@@ -346,25 +400,60 @@ def numerators_digest(real_M: list, complex_M: list) -> str:
     return digest.hexdigest()
 
 
-def basis_for_p(p: int) -> dict:
-    """Per-p work (run in a worker): the certificates of :func:`genhip_check` and :func:`certify_p`.
+def basis_for_p(p: int, sigma: int | None = SIGMA) -> dict:
+    """The basis of one odd p constructed and certified in a worker (:func:`certify_p`, with the derived
+    ``sigma``): the route of a build that emits no module (``--only`` without the module's derivations, or
+    without an output), where no round trip certifies the emitted core (:func:`certify_pending`).
 
-    Returns plain data (python-flint objects do not pickle): the certificates (keys left to the
-    main log, which records them in p order), sigma, the numerators' term counts and their
-    :func:`numerators_digest`.  A certificate with an unexpected outcome is returned too, not raised:
-    the main log raises when it records it, exactly as a serial build would.
+    Returns plain data (python-flint objects do not pickle): the certificates (keys left to the main log,
+    which records them in p order) and the numerators' term counts.  A certificate with an unexpected outcome
+    is returned too, not raised: the main log raises when it records it, exactly as a serial build would.
     """
     private = CertificateLog(derivation=NAME)
-    sigma, terms, digest = 0, [], ""
+    terms = []
     try:
-        genhip_check(private, p)
-        basis = certify_p(private, p)
-        sigma = basis.sigma
-        terms = [len(m) for m in basis.real.M + basis.complex_.M]
-        digest = numerators_digest(basis.real.M, basis.complex_.M)
+        with stopwatch() as elapsed:
+            real, cplx = construct(p)
+        certify_numerators(private, p, real, cplx, sigma=sigma, seconds=elapsed[0])
+        terms = [len(m) for m in real.M + cplx.M]
     except CertificationFailure:
         pass
-    return {"certificates": private.handed_over(), "sigma": sigma, "terms": terms, "digest": digest}
+    return {"certificates": private.handed_over(), "terms": terms}
+
+
+def genhip_for_p(p: int) -> list:
+    """:func:`genhip_check` of one odd p in a worker: its certificate, key left to the main log."""
+    private = CertificateLog(derivation=NAME)
+    try:
+        genhip_check(private, p)
+    except CertificationFailure:
+        pass
+    return private.handed_over()
+
+
+def complete_row(result: DerivationResult, p: int, keys: list, terms: list) -> None:
+    """The row of a p > KEEP_BASES (``result.exports["rows"]``: its genhip certificate so far) completed with the
+    keys of its basis certificates, once recorded (by the round trip on the emitted core, or :func:`certify_pending`),
+    and the numerators' term counts; p is no longer pending."""
+    row = next(r for r in result.exports["rows"] if r["p"] == p)
+    row["certificates"] = row["certificates"] + list(keys)
+    row["terms"] = list(terms)
+    result.exports["pending"] = [q for q in result.exports["pending"] if q != p]
+
+
+def certify_pending(log: CertificateLog, result: DerivationResult) -> list:
+    """The bases still pending (p > KEEP_BASES; ``result.exports["pending"]``) constructed and certified from the
+    recipe in workers (:func:`basis_for_p`), recorded in p order as this derivation's, their rows completed: for a
+    build that runs no round trip.  A build that emits the module leaves them to the round trip, which certifies
+    the emitted core's numerators instead (:func:`derivations.output.roundtrip.certify_module`)."""
+    pending = list(result.exports.get("pending", ()))
+    certs = []
+    with log.section(NAME):
+        for p, outcome in zip(pending, log.map_per_p("bases", pending, basis_for_p)):
+            recorded = [log.record(c) for c in outcome["certificates"]]   # raises at a failed one
+            certs += recorded
+            complete_row(result, p, [c.key for c in recorded], outcome["terms"])
+    return certs
 
 
 def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
@@ -375,7 +464,7 @@ def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
 
     def kept_bases():
         # p <= KEEP_BASES in this process (their Basis objects feed the printed comparisons), while the
-        # workers certify the rest; recorded before them, in p order, so the log is the same either way
+        # workers check genhip for the rest; recorded before them, in p order, so the log is the same either way
         compare_poly_f2(log, result, options)
         conservation_certificate(log)
         for p in log.per_p("bases", [q for q in odd if q <= KEEP_BASES]):
@@ -387,11 +476,17 @@ def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
                          "terms": [len(m) for m in basis.real.M + basis.complex_.M]})
 
     later = [q for q in odd if q > KEEP_BASES]
-    digests = {}
-    for p, outcome in zip(later, log.map_per_p("bases", later, basis_for_p, meanwhile=kept_bases)):
-        keys = [log.record(c).key for c in outcome["certificates"]]   # raises at a failed one, as in serial
-        digests[p] = outcome["digest"]
-        rows.append({"p": p, "sigma": outcome["sigma"], "certificates": keys, "terms": outcome["terms"]})
+
+    def kept_then_sigma():
+        kept_bases()
+        if later:   # the sigma the module is emitted with, for every p beyond the kept ones (the round trip confirms it)
+            sigma_certificate(log)
+
+    # beyond KEEP_BASES only genhip here: the bases themselves are certified on the numerators the emitted module
+    # computes, in the round trip (or by certify_pending when no module is emitted), which completes these rows
+    for p, certs in zip(later, log.map_per_p("bases", later, genhip_for_p, meanwhile=kept_then_sigma)):
+        keys = [log.record(c).key for c in certs]   # raises at a failed one, as in serial
+        rows.append({"p": p, "sigma": SIGMA, "certificates": keys, "terms": []})
     if 3 in bases:
         printed_comparisons(log, result, bases[3].certificates[2])
     compare_printed_examples(log, result, bases)
@@ -405,5 +500,5 @@ def run(log: CertificateLog, options, hyper_result) -> DerivationResult:
                        written,
                        *[c for c in log.certificates if c.key in rows[(p - 1) // 2]["certificates"]],
                        expr=basis_expr(written, p), hypotheses=[*HYPOTHESES, f"$p={p}$"])
-    result.exports.update(objects=objects, digests=digests, bases=bases, rows=rows, sigma={r["p"]: r["sigma"] for r in rows}, tables=coefficient_tables(options))
+    result.exports.update(objects=objects, pending=list(later), bases=bases, rows=rows, sigma={r["p"]: r["sigma"] for r in rows}, tables=coefficient_tables(options))
     return result
