@@ -1,11 +1,9 @@
 """The tests the quick loop (``pytest -m "not slow"``) leaves out, from a timed run of the whole suite (issue 43).
 
 Reads the output of ``python -m pytest --durations=0`` (the README's command, every core) on standard input and prints, sorted, the
-node id of every test whose setup, call and teardown took at least ``--threshold`` seconds (0.3) together, and
-those seconds (tab-separated); the suite's ``tests/conftest.py`` marks the ids listed in ``tests/slow_tests.txt``
-as ``slow`` (CI still runs them: the README's test command runs everything) and hands the test files out
-costliest first (their listed seconds summed), so that the suite does not end on one long test while the other
-cores idle.  Regenerate after adding costly tests:
+node id of every test whose setup, call and teardown took at least ``--threshold`` seconds (0.3) together; the suite's
+``tests/conftest.py`` marks the ids listed in ``tests/slow_tests.txt`` as ``slow`` (CI still runs them: the
+README's test command runs everything).  Regenerate after adding costly tests:
 
     CI=true python -m pytest --durations=0 -q | python bench/slow_tests.py > tests/slow_tests.txt
 
@@ -22,14 +20,13 @@ import sys
 LINE = re.compile(r"\s*([0-9.]+)s (?:call|setup|teardown)\s+(.+?)\s*$")
 
 
-def slow_ids(lines, threshold: float) -> list[tuple[str, float]]:
-    """(node id, seconds) of the tests at or above ``threshold``, sorted by node id."""
+def slow_ids(lines, threshold: float) -> list[str]:
     seconds: collections.Counter = collections.Counter()
     for line in lines:
         match = LINE.match(line)
         if match:
             seconds[match.group(2)] += float(match.group(1))
-    return sorted((node, total) for node, total in seconds.items() if total >= threshold)
+    return sorted(node for node, total in seconds.items() if total >= threshold)
 
 
 def main(argv=None) -> int:
@@ -41,7 +38,7 @@ def main(argv=None) -> int:
         print("slow_tests.py: no durations on standard input (run pytest with --durations=0)", file=sys.stderr)
         return 1
     print("# tests marked slow (bench/slow_tests.py: at least %g s each in a timed run of the whole suite)" % args.threshold)
-    print("\n".join(f"{node}\t{total:.2f}" for node, total in ids))
+    print("\n".join(ids))
     return 0
 
 

@@ -25,28 +25,19 @@ ROOT = Path(__file__).resolve().parents[1]
 SLOW_FIXTURES = {"default_build", "cli_build", "wheel", "venv"}   # a whole build, or a package installed
 
 
-def _listed_slow() -> dict[str, float]:
-    """Node id -> seconds in the timed run that listed it (``tests/slow_tests.txt``: ``id<TAB>seconds`` lines)."""
+def _listed_slow() -> set[str]:
     listed = (ROOT / "tests" / "slow_tests.txt").read_text(encoding="utf-8").splitlines()
-    rows = [line.rsplit("\t", 1) for line in listed if line.strip() and not line.startswith("#")]
-    return {row[0].strip(): float(row[1]) if len(row) == 2 else 0.0 for row in rows}
+    return {line.strip() for line in listed if line.strip() and not line.startswith("#")}
 
 
 def pytest_collection_modifyitems(config, items):
     """Mark ``slow`` what ``tests/slow_tests.txt`` lists (``bench/slow_tests.py``: 0.3 s or more in a timed run)
     and every test that needs a whole build: ``pytest -m "not slow"`` is the developer's quick loop; the
-    README's test command runs everything.
-
-    Then the test files in the order of their listed seconds, costliest first, each file's tests in their own
-    order (module fixtures are set up once): pytest-xdist hands tests out in this order, so the run ends on
-    short tests instead of one core finishing a 30 s test while the other idles."""
+    README's test command runs everything."""
     listed = _listed_slow()
-    cost: dict[str, float] = {}
     for item in items:
         if item.nodeid in listed or SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.slow)
-        cost[item.location[0]] = cost.get(item.location[0], 0.0) + listed.get(item.nodeid, 0.0)
-    items.sort(key=lambda item: -cost[item.location[0]])   # stable: the order within a file is kept
 
 
 @pytest.fixture(scope="session")
