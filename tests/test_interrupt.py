@@ -42,9 +42,16 @@ def _interrupt(command: list[str], ready: str, env: dict, ignored: bool = True) 
 
     Functional, not timed: a run that ignored Ctrl-C would finish its work (exit 0, output written), which
     the callers' assertions reject; the wait's limit only keeps a hung run from hanging the suite."""
-    ignore = lambda: signal.signal(signal.SIGINT, signal.SIG_IGN)   # noqa: E731 (as `sh -c 'cmd &'` does)
+    def start():
+        # the disposition a shell gives: ignored for a background job (`sh -c 'cmd &'`), else the default; and
+        # SIGINT never blocked.  Not inherited from this test process: seen twice in full runs (load_formulas
+        # after its build's progress line, SIGINT sent, the run went on to exit 0), the process that started
+        # it had SIGINT ignored or blocked at that moment, which no shell passes to a command it starts
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+        signal.signal(signal.SIGINT, signal.SIG_IGN if ignored else signal.SIG_DFL)
+
     process = subprocess.Popen(command, cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                               text=True, start_new_session=True, preexec_fn=ignore if ignored else None)
+                               text=True, start_new_session=True, preexec_fn=start)
     seen: list[str] = []
     shown = threading.Event()
 
