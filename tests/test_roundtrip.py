@@ -87,13 +87,18 @@ def test_each_runtime_mutation_is_rejected_and_named(default_build, monkeypatch,
     assert name in problem
 
 
-def mutated_copy(tmp_path, original, mutated):
-    target = tmp_path / "generated"
-    shutil.copytree(GENERATED, target, ignore=shutil.ignore_patterns("__pycache__"))
+def replaced_copy(source, target, original, mutated):
+    """A copy of the tree ``source`` at ``target`` whose module has one unique text replaced."""
+    shutil.copytree(source, target, ignore=shutil.ignore_patterns("__pycache__"))
     path = target / "suslov_formulas.py"
     text = path.read_text(encoding="utf-8")
     assert text.count(original) == 1, f"mutation site not unique: {original!r}"
     path.write_text(text.replace(original, mutated), encoding="utf-8")
+    return target
+
+
+def mutated_copy(tmp_path, original, mutated):
+    target = replaced_copy(GENERATED, tmp_path / "generated", original, mutated)
     # a consistent tree with a wrong formula (its manifest rewritten, as a faulty build would write it): what
     # the round trip must reject; a tree changed after its build is refused earlier (tests/test_manifest.py)
     from suslov.manifest import MANIFEST, read, write
@@ -177,13 +182,7 @@ def build19(tmp_path_factory):
 
 
 def faulty_copy(tmp_path, tree, original, mutated):
-    copy = tmp_path / "tree"
-    shutil.copytree(tree, copy, ignore=shutil.ignore_patterns("__pycache__"))
-    path = copy / "suslov_formulas.py"
-    text = path.read_text(encoding="utf-8")
-    assert text.count(original) == 1, f"mutation site not unique: {original!r}"
-    path.write_text(text.replace(original, mutated), encoding="utf-8")
-    return copy
+    return replaced_copy(tree, tmp_path / "tree", original, mutated)
 
 
 def in_workers(monkeypatch):
