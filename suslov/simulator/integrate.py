@@ -100,8 +100,7 @@ def solve_poisson(body, t_eval, initial, rtol=1e-10, atol=1e-12, method="DOP853"
     k = initial.shape[0]
 
     def rhs(t, y):
-        w = body.omega(np.asarray(t))
-        return _cross(y.reshape(k, 3), w).ravel()
+        return _cross(y.reshape(k, 3), body.omega_at(t)).ravel()
 
     from scipy.integrate import (
         solve_ivp,  # SciPy only when this route runs (sweep workers start faster)
