@@ -1,7 +1,8 @@
 """Ctrl-C stops any run, leaves the output as it was and no process behind (issue 36).
 
 A build of ``--pmax 201`` and ``load_formulas(pmax=61)`` are interrupted in the residue stage's per-p phase,
-a sweep once its first chunk is back (each waits for its own progress line, not a fixed time), both
+a sweep at its first progress line (43923 points in chunks of 64: the line comes within two seconds of the
+start of the work, hundreds of chunks still to compute; each waits for its own progress line, not a fixed time), both
 started as a non-interactive shell starts a background job (SIGINT inherited as ignored: the case in
 which a ``kill -INT`` used to do nothing).  Every process of the run's session must be gone when it
 ends, and the output directory must be absent (a build writes by an atomic swap) or hold only the
@@ -99,9 +100,10 @@ name = "interrupted"
 I11 = 2.0
 I22 = 1.0
 I33 = 1.5
-I13 = {linear = [-0.4, 0.4], count = 201}
-I23 = {linear = [-0.4, 0.4], count = 201}
+I13 = {linear = [-0.4, 0.4], count = 121}
+I23 = {linear = [-0.4, 0.4], count = 121}
 energy = [0.5, 1.0, 2.0]
+chunk = 64
 [effects]
 compute = ["scattering_angle", "scattering_angle_integrated"]
 """
@@ -111,9 +113,9 @@ compute = ["scattering_angle", "scattering_angle_integrated"]
 def test_sigint_stops_a_sweep(tmp_path):
     scene, out = tmp_path / "sweep.toml", tmp_path / "out"
     scene.write_text(SWEEP)
-    # interrupted once the first chunk is back (the workers are computing the others)
+    # interrupted at its first progress line ("chunks N/687, ..."; the workers are computing the others)
     code, left, stderr = _interrupt([sys.executable, "-m", "suslov", "simulate", str(scene), "--out", str(out),
-                                     "--yes"], "chunks 1/", dict(os.environ))
+                                     "--yes"], "chunks ", dict(os.environ))
     assert code == 130, stderr[-2000:]
     assert left == [], left
     assert "suslov: interrupted" in stderr and not out.exists()
