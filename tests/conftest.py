@@ -38,6 +38,17 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if item.nodeid in listed or SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.slow)
+    items[:] = sorted(items, key=_session_builds_first)
+
+
+def _session_builds_first(item) -> tuple:
+    """The tests that use a session-scoped build (SLOW_FIXTURES) first, grouped by the builds they use, the others
+    in collection order (a stable sort).  Why: each pytest-xdist worker builds a session fixture for itself when it
+    runs a test that needs it; ``--dist worksteal`` hands each worker a contiguous half of this list at the start,
+    so these tests all go to the first worker, which builds each fixture once for the whole run (the second
+    worker's copy of ``default_build`` cost about 11 CPU-seconds, in tests/test_notation_index.py's setup)."""
+    used = tuple(sorted(SLOW_FIXTURES & set(getattr(item, "fixturenames", ()))))
+    return (0, used) if used else (1, ())
 
 
 @pytest.fixture(scope="session")
