@@ -30,7 +30,7 @@ def main(trees: list[str]) -> dict:
     from derivations.core.options import BuildOptions
     from derivations.output.pipeline import MODULE_NEEDS, derive
 
-    build = derive(BuildOptions(), list(MODULE_NEEDS))
+    build = derive(BuildOptions(jobs=1), list(MODULE_NEEDS))   # no pool: the suite runs on every core already
     saved = {name: module for name, module in sys.modules.items() if _fresh(name)}
     outcome = {}
     for tree in trees:
