@@ -258,6 +258,13 @@ def per_p_checks(task) -> dict:
 
     Returns plain data: ``{"basis": certificates, "terms": term counts, "checks": certificates}``, keys left to
     the main log (the basis certificates recorded as the meromorphic derivation's, the checks as the round trip's)."""
+    try:
+        return _per_p(task)
+    finally:
+        release_freed_integers()   # the numerators of this p are freed by now
+
+
+def _per_p(task) -> dict:
     directory, p, sigma = task
     module = load_module_once(directory)
     basis, numerators, terms = certify_emitted_basis(module, p, sigma)
@@ -265,6 +272,37 @@ def per_p_checks(task) -> dict:
         return {"basis": basis, "terms": terms, "checks": []}
     checks = ([("first_integral", p, None)] if p in module.INTEGRAL_PS else []) + [("gamma_basis", p, numerators)]
     return {"basis": basis, "terms": terms, "checks": _private_checks(module, checks)}
+
+
+def release_freed_integers() -> None:
+    """Empty FLINT's cache of freed multiprecision integers (``_fmpz_cleanup_mpz_content``, FLINT 3; a no-op when the
+    symbol is not found).
+
+    Why: FLINT keeps every freed big integer of up to 64 limbs, with its limbs, for reuse (800,000 of them after one
+    p = 201, the numerators' coefficients have 3,400 bits), and hands them out last-freed first, scattered over the
+    heap: a worker's later p computed on them slowly.  Measured in one process doing p = 201, 199, ..., 191, 201 (shared
+    2-core AMD EPYC): without it the exact steps slowed with every p (at the second p = 201 the construction 2.5 s ->
+    3.7 s, the third-order test 0.72 s -> 1.59 s, the Poisson tests 0.68 s -> 1.33 s; p = 191 took 9.1 s against 7.7 s);
+    with it p = 191 took 7.7 s.  With the recipe's exact routes, one process doing p = 201, 199, ..., 187 in turn took
+    96 s before, 67 s after (``bench/results/basis_roundtrip.md``), and ``build_formulas.py --pmax 201 --no-cache`` 203 s
+    (about 275 s before, measured apart).  Live integers are untouched (FLINT's own thread-exit cleanup; blocks still
+    in use are freed when their last integer is), so nothing computed changes; emptying 800,000 takes about 50 ms."""
+    global _CLEANUP
+    if _CLEANUP is None:
+        import ctypes
+
+        from flint.types import fmpz
+
+        try:   # looked up through python-flint's own extension: the FLINT it is linked with
+            _CLEANUP = ctypes.CDLL(fmpz.__file__)._fmpz_cleanup_mpz_content
+            _CLEANUP.restype, _CLEANUP.argtypes = None, []
+        except (OSError, AttributeError):
+            _CLEANUP = False
+    if _CLEANUP:
+        _CLEANUP()
+
+
+_CLEANUP = None
 
 
 _modules: dict = {}

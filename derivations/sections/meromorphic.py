@@ -69,6 +69,12 @@ Cost at large p (one core, p = 201, ``bench/bench_basis_construct.py``): the con
 certificate (products of the values at x = 0 by ``mul_red``) 0.6 s -> 0.1 s, :func:`numerators_digest`
 (the same bytes) 1.2 s -> 1.0 s.  Certifying the emitted core in the round trip instead of a second
 construction saves, per p, one construction and both digests (the build's times: ``docs/benchmarks.md``).
+Since then the recipe's exact routes (``suslov/recipes/basis.py``: the construction 3.27 s -> 2.68 s at p = 201),
+the complex solution's first numerator split into its i-coordinates once for the third-order and Poisson tests
+(it was split three times: 35 ms each at p = 201), and the limits at t -> +oo read from the leading terms only
+(:func:`_coefficient_x`): at p = 201 the third-order test 0.85 s -> 0.71 s, orthonormality and limits 0.16 s ->
+0.10 s, the round trip's whole ``per_p_checks`` 8.35 s -> 7.67 s (shared 2-core AMD EPYC, medians of 4 fresh
+processes per route; ``bench/results/basis_roundtrip.md``).
 """
 from __future__ import annotations
 
@@ -146,12 +152,12 @@ def poisson_residuals(sol: Solution) -> list:
             red(DD(M3, p, r) + 2 * p * (D**2 + 1) * X * M1 + p * (X**2 - 1) * M2)]
 
 
-def poisson_hold(sol: Solution, first: tuple | None = None) -> bool:
+def poisson_hold(sol: Solution, first: tuple | None = None, parts: tuple | None = None) -> bool:
     """``all(r.is_zero() for r in poisson_residuals(sol))``, in coordinates (``derivations.sections.meromorphic_ring``):
     each equation ``A = B`` tested as the equality of the two sides' real and imaginary coordinates.
-    ``first``: ``DD_split(split_i(M1), p, rate)`` when the caller has it already."""
+    ``first``: ``DD_split(split_i(M1), p, rate)`` when the caller has it already, ``parts`` likewise ``split_i(M1)``."""
     p, r = sol.p, sol.rate
-    M1, M2, M3 = (split_i(m) for m in sol.M)
+    M1, M2, M3 = (split_i(m) if n or parts is None else parts for n, m in enumerate(sol.M))
     D1 = DD_split(M1, p, r) if first is None else first
     if not all(a == 2 * p * X * b for a, b in zip(D1, M3)):
         return False
@@ -232,8 +238,9 @@ def certify_numerators(log: CertificateLog, p: int, real: Solution, cplx: Soluti
         origin if ok_div else detail(False))))
     with stopwatch() as elapsed:
         # in coordinates (meromorphic_ring); the residual itself only to report its size when it is not zero
-        first = DD_split(split_i(cplx.M[0]), p, 1)
-        ok = third_order_holds(cplx.M[0], p, 1, first)
+        parts = split_i(cplx.M[0])   # split once for both tests (80k terms at p = 201)
+        first = DD_split(parts, p, 1)
+        ok = third_order_holds(cplx.M[0], p, 1, first, parts)
         size = 0 if ok else len(third_order_residual(cplx.M[0], p, 1))
     certs.append(log.record(Certificate(
         f"$p = {p}$: $g1 = e^(i (p/d) t) x P_p(x^2)/(1+x^2)^p = sqrt(z-1) F2(z)$ (F_23_pol) solves eq:genhipprep; with the "
@@ -241,7 +248,7 @@ def certify_numerators(log: CertificateLog, p: int, real: Solution, cplx: Soluti
         Statement("exact zero test in ", ring(DOMAIN)), Outcome.PASS if ok else Outcome.FAIL, elapsed[0], size,
         detail(ok))))
     with stopwatch() as elapsed:
-        ok = poisson_hold(real) and poisson_hold(cplx, first)   # first = DD(M1) of the complex solution
+        ok = poisson_hold(real) and poisson_hold(cplx, first, parts)   # first = DD(M1) of the complex solution
         size = 0 if ok else sum(len(r) for r in poisson_residuals(real) + poisson_residuals(cplx))
     certs.append(c_poisson := log.record(Certificate(
         f"$p = {p}$: $gammaI$ and the complex solution $e^(i(p/d)t) V$ solve the Poisson equations eq:ps with $omega$ "
@@ -302,11 +309,18 @@ def certify_numerators(log: CertificateLog, p: int, real: Solution, cplx: Soluti
 
 
 def _coefficient_x(poly, degree: int):
-    """Coefficient of x^degree as a polynomial in (d, i)."""
+    """Coefficient of x^degree as a polynomial in (d, i).
+
+    The terms are stored in lex order, x first and descending: those with x^degree follow those with a higher power
+    and precede every lower one, so the scan stops there (at p = 201 the limits read 100 terms of each numerator,
+    not 20,000)."""
     total = CTX.constant(0)
-    for monomial, coefficient in zip(poly.monoms(), poly.coeffs()):
+    for n in range(len(poly)):
+        monomial = poly.monomial(n)
+        if monomial[0] < degree:
+            break
         if monomial[0] == degree:
-            total += coefficient * D ** monomial[1] * I ** monomial[2]
+            total += poly.coefficient(n) * D ** monomial[1] * I ** monomial[2]
     return total
 
 

@@ -106,14 +106,14 @@ def DD_split(parts: tuple, p: int, rate: int, q: int | None = None) -> tuple:
     return base0 - w * N1, base1 + w * N0
 
 
-def third_order_holds(N, p: int, rate: int, first: tuple | None = None) -> bool:
+def third_order_holds(N, p: int, rate: int, first: tuple | None = None, parts: tuple | None = None) -> bool:
     """``third_order_residual(N, p, rate).is_zero()``, computed in coordinates (see the module docstring).
 
     The residual is ``(d^2+1) p^3 (u G3 + c2 G2 + c1 G1 - c0 G0)``; the bracket is tested, coordinate by
     coordinate, as ``u G3 + c2 G2 + c1 G1 == c0 G0``.  ``first``: ``DD_split(split_i(N), p, rate)`` when the
-    caller has it already.
+    caller has it already, ``parts`` likewise ``split_i(N)``.
     """
-    G0 = split_i(N)
+    G0 = split_i(N) if parts is None else parts
     G1 = DD_split(G0, p, rate, p) if first is None else first
     G2 = DD_split(G1, p, rate, p + 1)
     G3 = DD_split(G2, p, rate, p + 2)
