@@ -34,8 +34,10 @@ RUNTIME_MUTATIONS = [
     ("first_integral", "integrals.py", '"P2": numerators.K**2 * numerators.Den', '"P2": numerators.K * numerators.Den'),
     ("special_case_parameters", "bodies.py", "if I23 > 0:", "if I23 < 0:"),
     ("gamma_basis", "basis.py", "sign = -sigma[p]", "sign = sigma[p]"),
-    # shared by the float path and the mp twin, and still a rotation: only the exact evaluation sees it
-    ("gamma_basis_mp", "basis.py", "rows += [[f * v / k for v in comp]", "rows += [[f * v / k.conjugate() for v in comp]"),
+    # shared by the float path and the mp twin, and still a rotation: no float-path proof sees it, the exact
+    # evaluations do (the run-time route check of gamma_basis, which verify() runs first, at (t, p, d) =
+    # (12000, 5, 0.001); the mp twin's): "gamma_basis" is in both names
+    ("gamma_basis", "basis.py", "rows += [[f * v / k for v in comp]", "rows += [[f * v / k.conjugate() for v in comp]"),
     # the coefficients rounded to the caller's precision instead of dps: off by 1e-17, seen only at high dps
     ("gamma_basis_mp", "basis.py", "return mpmath.mp.make_mpf(mpmath.libmp.from_man_exp(int(man), int(exp)))",
      "return mpmath.mpf((int(man), int(exp)))"),

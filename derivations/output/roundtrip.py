@@ -341,7 +341,8 @@ def float_check(task) -> list:
     return _private_checks(module, [(name, argument, numerators)])
 
 
-def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None, bases: dict | None = None) -> list:
+def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None, bases: dict | None = None,
+                   routes_first: bool = False) -> list:
     """All round-trip certificates for the module in ``directory`` (raises CertificationFailure);
     ``meanwhile()``, the caller's own work, runs in this process once the float-path checks are started.
 
@@ -356,6 +357,8 @@ def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None, 
     then the float-path checks of that p.  ``bases``, when given, receives for each such p the keys of its
     basis certificates and the numerators' term counts (the build completes its basis table with them:
     :func:`derivations.sections.meromorphic.complete_row`).  The log is the one a single process writes.
+    ``routes_first`` (:func:`verify`, which writes no log) certifies the run-time routes before recording the
+    float-path checks: a faulty route is named without waiting for every float proof first.
     """
     from derivations.core.emit import emitted_formulas
     from derivations.output import float_paths, runtime_routes
@@ -381,12 +384,15 @@ def certify_module(log: CertificateLog, build, directory: Path, meanwhile=None, 
         certs.extend(certify_emitted(log, module, emitted_formulas(build)))
         certs.extend(certify_integral_core(log, module, build.results["first_integrals"].exports["objects"]))
         certs.extend(certify_basis_core(log, module, kept))
+        if routes_first:
+            certs.extend(runtime_routes.certify(log, module, build))
         if in_workers:
             for batch in log.map_per_p(FLOAT_CHECKS, checks, float_check, cacheable=False):
                 certs.extend(log.record(c) for c in batch)
         else:
             certs.extend(float_paths.certify(log, module, build, skip=set(pending)))
-        certs.extend(runtime_routes.certify(log, module, build))   # every public route, independent references
+        if not routes_first:
+            certs.extend(runtime_routes.certify(log, module, build))   # every public route, independent references
 
     try:
         with log.section(SECTION), mpmath.workdps(15):
@@ -411,10 +417,15 @@ def verify(build, directory: Path, jobs: int | None = None) -> str | None:
     """None when the module in ``directory`` passes every round-trip check, else the first discrepancy.
 
     ``jobs``: worker processes for the float-path and per-p checks (None: all cores; 1: all in this process,
-    where a fault patched into this process's modules, as the mutation tests do, is what gets checked)."""
+    where a fault patched into this process's modules, as the mutation tests do, is what gets checked).
+
+    The run-time routes are certified before the float-path checks are recorded (``routes_first``: the order of
+    a build's log does not bind a check that writes none): a fault in a route is named after about 0.3 s of
+    checks instead of 1.2 s (every float proof first; ``tests/test_verify_faults.py`` seeds 16 such faults in one
+    batch: 26.6 s -> 12.1 s, measured back to back); a tree that passes runs every check either way."""
     log = CertificateLog(workers=jobs)
     try:
-        certify_module(log, build, directory)
+        certify_module(log, build, directory, routes_first=True)
     except CertificationFailure as failure:
         c = failure.certificate
         return f"{c.claim}: {c.detail}"
