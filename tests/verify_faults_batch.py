@@ -38,7 +38,9 @@ def main(trees: list[str]) -> dict:
             del sys.modules[name]
         sys.path.insert(0, tree)
         try:
-            from derivations.output.roundtrip import verify   # fresh: its lazy imports resolve in the copy
+            from derivations.output.roundtrip import (
+                verify,  # fresh: its lazy imports resolve in the copy
+            )
 
             outcome[tree] = verify(build, Path(tree) / "generated", jobs=1)   # the copy is on this process's path
         except Exception as error:   # a check that crashes on a fault is a rejection, named as --verify would
