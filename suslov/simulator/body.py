@@ -16,6 +16,7 @@ level is a time shift of this one (or its mirror, ``branch = -1`` of
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -75,18 +76,20 @@ class Body:
             if self.special:
                 w1, w2 = gf._omega(FLOAT, s, self.p, self.d)
             else:
-                I11, I22, I13, I23 = self._scaled_entries
-                w1, w2 = gf._omega_general(FLOAT, s, I11, I22, I13, I23, np.sqrt(I11 * I22))
+                w1, w2 = gf._omega_general(FLOAT, s, *self._scaled_entries)
         if math.isfinite(w1) and math.isfinite(w2):
             return self.rate * np.array([w1, w2])
         return self.omega(np.asarray(t, dtype=float))
 
-    @property
+    @functools.cached_property
     def _scaled_entries(self) -> tuple:
-        """The entries divided by the largest of I11, I22, |I13|, |I23| (as ``omega_general`` divides them)."""
+        """(I11, I22, I13, I23, r): the entries divided by the largest of I11, I22, |I13|, |I23| and r = sqrt(I11 I22)
+        of the scaled ones, as ``omega_general`` computes them for branch +1 (once per body: ``omega_at`` is a hot
+        path)."""
         I11, I22, I13, I23 = (np.float64(v) for v in self.entries)
         size = np.maximum(np.maximum(I11, I22), np.maximum(np.abs(I13), np.abs(I23)))
-        return I11 / size, I22 / size, I13 / size, I23 / size
+        I11, I22, I13, I23 = I11 / size, I22 / size, I13 / size, I23 / size
+        return I11, I22, I13, I23, np.sqrt(I11 * I22)
 
     def omega_scene(self, t) -> np.ndarray:
         """omega(t) in the scene frame, shape t.shape + (3,)."""
