@@ -9,33 +9,35 @@ their modules here; ``--only`` resolves names against this table.
 """
 from __future__ import annotations
 
+import functools
+import importlib
 from types import ModuleType
 
-from derivations.sections import (
-    first_integrals,
-    fuchsian,
-    galois,
-    gauss,
-    general_angle,
-    general_galois,
-    hypergeometric,
-    kovalevskaya,
-    meromorphic,
-    model,
-    pole_theorem,
-    residue,
-    scattering,
-    special_case,
-)
+# the derivation modules (derivations.sections.<name>, whose NAME is <name>), in dependency order: known without
+# importing them, so that the command line checks ``--only`` before it loads SymPy and the derivations
+NAMES = ("model", "special_case", "kovalevskaya", "residue", "hypergeometric", "meromorphic", "first_integrals",
+         "scattering", "galois", "fuchsian", "gauss", "general_angle", "general_galois", "pole_theorem")
 
-DERIVATIONS: dict[str, ModuleType] = {m.NAME: m for m in (model, special_case, kovalevskaya, residue, hypergeometric,
-                                                   meromorphic, first_integrals, scattering, galois,
-                                                   fuchsian, gauss, general_angle, general_galois,
-                                                   pole_theorem)}
+
+@functools.cache
+def _table() -> dict[str, ModuleType]:
+    table = {name: importlib.import_module(f"derivations.sections.{name}") for name in NAMES}
+    wrong = [name for name, module in table.items() if module.NAME != name]
+    if wrong:
+        raise ImportError(f"derivations.sections.{wrong[0]} is registered as {wrong[0]!r} but names itself "
+                          f"{table[wrong[0]].NAME!r}")
+    return table
+
+
+def __getattr__(name: str):
+    """``DERIVATIONS`` (name -> module, in registry order), imported on first use."""
+    if name == "DERIVATIONS":
+        return _table()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def requirements(name: str) -> tuple[str, ...]:
-    return tuple(getattr(DERIVATIONS[name], "REQUIRES", ()))
+    return tuple(getattr(_table()[name], "REQUIRES", ()))
 
 
 def resolve(only: list[str] | None) -> list[str]:
@@ -44,12 +46,12 @@ def resolve(only: list[str] | None) -> list[str]:
     Raises ``KeyError`` with the unknown name and the known ones.
     """
     if not only:
-        return list(DERIVATIONS)
+        return list(NAMES)
     wanted: set[str] = set()
 
     def add(name: str):
-        if name not in DERIVATIONS:
-            raise KeyError(f"unknown derivation {name!r}; known: {', '.join(DERIVATIONS)}")
+        if name not in NAMES:
+            raise KeyError(f"unknown derivation {name!r}; known: {', '.join(NAMES)}")
         if name not in wanted:
             wanted.add(name)
             for req in requirements(name):
@@ -57,4 +59,4 @@ def resolve(only: list[str] | None) -> list[str]:
 
     for name in only:
         add(name)
-    return [name for name in DERIVATIONS if name in wanted]
+    return [name for name in NAMES if name in wanted]

@@ -261,6 +261,7 @@ def test_build_on_a_full_disk(tmp_path, monkeypatch, capsys, environment):
 def test_build_with_a_full_cache_disk(tmp_path, monkeypatch, capsys, environment):
     """The per-p certificate cache shares the disk: its failure is one line naming the cache, no traceback."""
     import derivations.output.cli as cli
+    import derivations.output.pipeline as pipeline
 
     monkeypatch.setenv("SUSLOV_CACHE_DIR", str(tmp_path / "cache"))
     monkeypatch.delenv("SUSLOV_NO_CACHE", raising=False)
@@ -268,7 +269,7 @@ def test_build_with_a_full_cache_disk(tmp_path, monkeypatch, capsys, environment
     def derive(*args, **kwargs):
         raise OSError(errno.ENOSPC, ENOSPC_TEXT)
 
-    monkeypatch.setattr(cli, "derive", derive)
+    monkeypatch.setattr(pipeline, "derive", derive)   # the command line imports it when the build starts
     assert cli.run(["--only", "model", "--out", str(tmp_path / "out"), "--quiet"]) == 2
     _one_error_line(capsys.readouterr().err, "certificate cache", str(tmp_path / "cache"), ENOSPC_TEXT, "--no-cache")
     assert not (tmp_path / "out").exists()

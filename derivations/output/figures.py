@@ -35,11 +35,9 @@ from fractions import Fraction
 
 import numpy as np
 
+from derivations.output.tree import FIGURES_NEEDS as NEEDS  # noqa: F401 - the derivations the figures draw
 from suslov.runtime import angle as _angle
 from suslov.runtime import general_angle as _general
-
-# the derivations whose formulas the figures draw (the output's needs in pipeline.OUTPUTS)
-NEEDS = ("scattering", "general_angle", "general_galois", "pole_theorem")
 
 WIDTH, HEIGHT = 300.0, 130.0   # the plot area of a curve figure, pt
 GAP = 1.8                      # largest distance of consecutive samples, and of consecutive dots, on the page (pt)
