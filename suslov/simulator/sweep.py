@@ -85,6 +85,7 @@ class SweepPlan:
     startup: float = WORKER_START  # seconds before a worker's first chunk finishes its first point
     free_cores: float | None = None   # cores not busy with other work when measured (os.getloadavg)
     outputs: bool = True   # the outputs are written (suslov simulate --out): their cost is part of the estimate
+    classified: dict | None = None   # point index -> its class, for the points plan_sweep classified (its sample)
 
     def point_cost(self, steps: tuple) -> float:
         if self.measured and steps in self.measured:
@@ -181,19 +182,19 @@ def plan_sweep(scene, workers: int | None = None, scheduler: str | None = None) 
     if sampled:
         index = np.sort(np.random.default_rng(0).choice(n, SAMPLE_FOR_EXPLAIN, replace=False))
     classes: dict = {}
-    for i in index:
-        key = classify(sw.point(int(i)), options)
+    classified = {int(i): classify(sw.point(int(i)), options) for i in index}
+    for key in classified.values():
         classes[key] = classes.get(key, 0) + 1
     if sampled:
         classes = {k: round(v * n / len(index)) for k, v in classes.items()}
     auto = workers is None
     workers = executor.default_workers() if auto else max(1, workers)
-    plan = SweepPlan(scene, classes, sampled, 1, 1, 1, scheduler)
+    plan = SweepPlan(scene, classes, sampled, 1, 1, 1, scheduler, classified=classified)
     if auto and not scheduler and plan.compute_estimate() < 2 * WORKER_START:
         workers = 1   # starting processes would cost more than the work
     parallel = 4 if scheduler else workers
     chunk = sw.chunk or max(min(n, 16), min(2000, math.ceil(n / (8 * parallel))))
-    return SweepPlan(scene, classes, sampled, chunk, math.ceil(n / chunk), workers, scheduler)
+    return SweepPlan(scene, classes, sampled, chunk, math.ceil(n / chunk), workers, scheduler, classified=classified)
 
 
 def _angle(body, steps, point):
@@ -377,17 +378,27 @@ def check_size(scene, plan: SweepPlan, confirmed: bool) -> None:
                          "suslov.simulate(..., confirmed=True))")
 
 
-def measure_costs(scene, budget: float = CALIBRATION_SECONDS) -> tuple[dict, int, float]:
+def measure_costs(scene, budget: float = CALIBRATION_SECONDS, classified: dict | None = None) -> tuple[dict, int, float]:
     """(class -> seconds per point, points timed, seconds of the first calls): each class of points timed
     here on ``CALIBRATION_POINTS`` sample points at least, and on up to ``CALIBRATION_MAX`` while the class has
     taken less than ``CALIBRATION_CLASS`` seconds (cheap points vary more than their mean), after one untimed call
     (compilation, caches: what every worker pays once), within about ``budget`` seconds after those.  The table
     ``COST`` is a guess from another machine and another load; a sweep of 5043 integrations announced 19 s and
-    took 112 s.  Writing the outputs is not timed here: :mod:`suslov.simulator.sweep_cost` counts it."""
+    took 112 s.  Writing the outputs is not timed here: :mod:`suslov.simulator.sweep_cost` counts it.
+
+    ``classified``: the classes :func:`plan_sweep` found (point index -> class, ``SweepPlan.classified``); the
+    sample points are then drawn from those points, in a random order, and not classified a second time (each
+    class takes building the point's body: 20000 of them took about 4 s)."""
     sw, options = scene.sweep, _options(scene)
     samples: dict = {}
-    for i in np.random.default_rng(0).permutation(len(sw))[:SAMPLE_FOR_EXPLAIN]:
-        indices = samples.setdefault(classify(sw.point(int(i)), options), [])
+    rng = np.random.default_rng(0)
+    if classified:
+        order = [int(i) for i in rng.permutation(np.fromiter(classified, dtype=np.int64, count=len(classified)))]
+    else:
+        order = [int(i) for i in rng.permutation(len(sw))[:SAMPLE_FOR_EXPLAIN]]
+    for i in order:
+        key = classified[i] if classified else classify(sw.point(i), options)
+        indices = samples.setdefault(key, [])
         if len(indices) < CALIBRATION_MAX + 1:
             indices.append(int(i))
     measured, timed, first, start = {}, 0, 0.0, time.perf_counter()
@@ -427,7 +438,7 @@ def compute_sweep(scene, plan: SweepPlan, store=None, progress=None) -> tuple[di
     without ``out``) no outputs follow, and the announced estimate leaves them out."""
     plan.outputs = store is not None
     if progress:
-        plan.measured, timed, first = measure_costs(scene)
+        plan.measured, timed, first = measure_costs(scene, classified=plan.classified)
         plan.startup, plan.free_cores = WORKER_START + first, free_cores()
         busy = "" if plan.free_cores is None else f", {max(0.0, plan.free_cores):.1f} of {os.cpu_count()} cores free"
         basis = f"points timed on {timed} samples here{busy}" if timed else "points from the cost table"
