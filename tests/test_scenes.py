@@ -328,5 +328,6 @@ def test_omega_at_one_instant_is_the_public_omega_bit_for_bit():
     for body in bodies:
         for t in (-700.0, -30.0, -1.0, 0.0, 0.3, 25.0, 710.0):
             assert np.array_equal(body.omega_at(t), body.omega(np.asarray(t))), (body.describe(), t)
-            w = body.omega_scene(np.asarray(t))   # the energy through the public route, as it was computed before
-            assert body.energy(t) == float(0.5 * w @ body.tensor @ w), (body.describe(), t)
+            with np.errstate(over="ignore"):   # p/d = 1e305: an energy beyond float64 is inf on both routes
+                w = body.omega_scene(np.asarray(t))   # the energy through the public route, as it was computed before
+                assert body.energy(t) == float(0.5 * w @ body.tensor @ w), (body.describe(), t)
