@@ -34,19 +34,10 @@ from machine_info import cpu_name  # noqa: E402
 from results_io import write_results  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
-SWEEP = """
-name = "interrupted"
-[sweep]
-I11 = 2.0
-I22 = 1.0
-I33 = 1.5
-I13 = {linear = [-0.4, 0.4], count = 121}
-I23 = {linear = [-0.4, 0.4], count = 121}
-energy = [0.5, 1.0, 2.0]
-chunk = 64
-[effects]
-compute = ["scattering_angle", "scattering_angle_integrated"]
-"""
+sys.path.insert(0, str(ROOT / "tests"))
+import test_interrupt as _interrupt_test  # noqa: E402
+
+SWEEP = _interrupt_test.SWEEP   # the scene of tests/test_interrupt.py, one definition
 
 
 def start_times(tree: Path, work: Path) -> tuple[float, float]:
