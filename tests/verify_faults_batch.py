@@ -8,7 +8,8 @@ derivation runs once; then, for each seeded copy, every ``suslov`` module and ev
 themselves (``basis_proof``'s phase, ``float_paths``) all come from the copy, as in a ``--verify`` subprocess started
 there; :func:`derivations.output.roundtrip.verify` then gives the first discrepancy or None.  The derivation's own
 results (``derivations.sections``, ``derivations.core``) are exact objects computed before any fault was seeded.
-``tests/test_verify_faults.py`` also runs the real command line on the unmutated copy and on two faults.
+The real command line's ``--verify`` runs in ``tests/test_roundtrip.py`` (on the committed tree and on a mutated
+copy).
 
 Usage: ``python tests/verify_faults_batch.py TREES...`` (each a directory holding ``suslov/`` and ``generated/``);
 prints one JSON object: tree -> the discrepancy, or null when the tree passes.
