@@ -1,5 +1,7 @@
 """Shared fixtures: one certified build in this process and one by the command line per test session
-(about ten seconds each, cold), and the ``slow`` marker of the quick loop (``pytest -m "not slow"``).
+(about ten seconds each, cold), the committed documents compiled and the Sphinx pages built once per run
+(:func:`once_per_run`: one directory for all xdist workers), and the ``slow`` marker of the quick loop
+(``pytest -m "not slow"``).
 
 The build's certificate cache is off for the whole session (``SUSLOV_NO_CACHE``, inherited by the
 ``build_formulas.py`` subprocesses): tests that perturb a derivation at run time must not be
@@ -13,6 +15,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from filelock import FileLock
 
 os.environ["SUSLOV_NO_CACHE"] = "1"
 
@@ -73,6 +76,42 @@ def cli_build(tmp_path_factory):
                           cwd=ROOT, env=env, capture_output=True, text=True, timeout=900)
     assert done.returncode == 0, done.stderr[-3000:]
     return root / "out", env
+
+
+def once_per_run(tmp_path_factory, worker_id: str, name: str, make) -> Path:
+    """A directory ``make(directory)`` fills once per test run, whichever xdist worker asks first; the others wait
+    for it and read the same files (pytest-xdist's recipe: a file lock in the run's base directory, which is new for
+    every run).  A session fixture is otherwise made once per worker, and with the tests of one module spread
+    over both workers the Sphinx pages were built twice (about 16 CPU-s).  The directory is complete when its
+    marker file is there; if ``make`` fails, nothing is marked and the next worker tries again (and fails alike).
+    Callers treat the directory as read-only.  Without xdist (``-n 0``) the directory is this session's own."""
+    if worker_id == "master":
+        root = tmp_path_factory.mktemp(name)
+        make(root)
+        return root
+    root = tmp_path_factory.getbasetemp().parent / name
+    done = root / ".made"
+    with FileLock(str(root) + ".lock"):
+        if not done.is_file():
+            shutil.rmtree(root, ignore_errors=True)   # a failed attempt of another worker
+            root.mkdir()
+            make(root)
+            done.write_text("complete\n")
+    return root
+
+
+@pytest.fixture(scope="session")
+def generated_pdfs(tmp_path_factory, worker_id) -> list:
+    """The committed tree's documents compiled once per run (:func:`derivations.output.pdf.compile_pdfs`, the
+    order it returns them in), for the tests that read them (tests/test_latex.py, tests/test_pdf_text.py)."""
+    from derivations.output import pdf
+    from derivations.output.pipeline import GENERATED
+
+    require_tools("pdflatex")
+    directory = once_per_run(tmp_path_factory, worker_id, "generated-pdf",
+                             lambda root: (root / "order.txt").write_text(
+                                 "\n".join(p.name for p in pdf.compile_pdfs(GENERATED, root / "pdf")) + "\n"))
+    return [directory / "pdf" / line for line in (directory / "order.txt").read_text().split()]
 
 
 def working_tree(target: Path) -> None:

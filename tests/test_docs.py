@@ -19,6 +19,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from conftest import once_per_run
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
@@ -43,14 +44,8 @@ def _text(path: Path) -> str:
     return html.unescape(re.sub(r"<[^>]+>", "", path.read_text(encoding="utf-8")))
 
 
-@pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    missing = [name for name in EXTENSIONS if importlib.util.find_spec(name) is None]
-    if missing:
-        if os.environ.get("CI"):
-            pytest.fail(f"{', '.join(missing)} not installed under CI: the test extra must pull the docs extra")
-        pytest.skip(f"{', '.join(missing)} not installed (pip install -c constraints.txt -e \".[docs]\")")
-    work = tmp_path_factory.mktemp("docs")
+def _sphinx(work: Path) -> None:
+    """``sphinx-build -W`` of a copy of docs/ (``work/src``) into ``work/html``."""
     source, out = work / "src", work / "html"
     shutil.copytree(DOCS, source, ignore=shutil.ignore_patterns("_build", "auto_examples", "gen_modules",
                                                                 "__pycache__"))
@@ -60,7 +55,18 @@ def built(tmp_path_factory):
                            str(source), str(out)], cwd=work, env=env, capture_output=True, text=True,
                           timeout=TIMEOUT)
     assert proc.returncode == 0, f"sphinx-build -W failed:\n{proc.stderr[-6000:]}\n{proc.stdout[-2000:]}"
-    return source, out
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory, worker_id):
+    """(source, html) of one Sphinx build per test run, shared by the xdist workers (conftest.once_per_run)."""
+    missing = [name for name in EXTENSIONS if importlib.util.find_spec(name) is None]
+    if missing:
+        if os.environ.get("CI"):
+            pytest.fail(f"{', '.join(missing)} not installed under CI: the test extra must pull the docs extra")
+        pytest.skip(f"{', '.join(missing)} not installed (pip install -c constraints.txt -e \".[docs]\")")
+    work = once_per_run(tmp_path_factory, worker_id, "docs", _sphinx)
+    return work / "src", work / "html"
 
 
 def test_build_has_the_pages(built):

@@ -22,14 +22,13 @@ from sympy.functions.special.hyper import TupleArg
 from derivations.core import statement
 from derivations.core.statement import Ring, Statement, TextPrinter, math, say
 from derivations.output import pdf
-from derivations.output.pipeline import GENERATED
 
 
 @pytest.fixture(scope="module")
-def pdfs(tmp_path_factory):
-    """Both documents compiled from the committed tree: name -> PDF path."""
-    require_tools(*("pdflatex", "pdftotext", "pdftohtml"))
-    return {d.name: d for d in pdf.compile_pdfs(GENERATED, tmp_path_factory.mktemp("pdf"))}
+def pdfs(generated_pdfs):
+    """Both documents compiled from the committed tree (once per run: conftest.generated_pdfs): name -> PDF path."""
+    require_tools(*("pdftotext", "pdftohtml"))
+    return {d.name: d for d in generated_pdfs}
 
 
 @pytest.fixture(scope="module")
