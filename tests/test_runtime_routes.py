@@ -129,5 +129,4 @@ def test_every_route_passes_on_the_committed_module(default_build, module):
               "gamma_basis", "gamma_basis_mp", "scattering_angle", "scattering_angle_mp", "scattering_angle_ball",
               "general_scattering_angle", "general_scattering_angle_mp", "general_scattering_angle_ball",
               "finite.repair (omega, omega_general)"}
-    assert named == public
-    assert sum(c.seconds for c in certificates) < 1.0
+    assert named == public   # their cost is measured in bench/bench_runtime_routes.py, not asserted here
