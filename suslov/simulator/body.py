@@ -93,7 +93,10 @@ class Body:
 
     def omega_scene(self, t) -> np.ndarray:
         """omega(t) in the scene frame, shape t.shape + (3,)."""
-        w = self.omega(t)
+        return self._in_scene(self.omega(t))
+
+    def _in_scene(self, w: np.ndarray) -> np.ndarray:
+        """Paper-frame (w1, w2) values, shape (..., 2), as scene-frame vectors (w1, w2, 0) R^T, shape (..., 3)."""
         full = np.concatenate([w, np.zeros(w.shape[:-1] + (1,))], axis=-1)
         return full @ self.frame.T
 
@@ -110,7 +113,7 @@ class Body:
         every body with an energy, and a sweep builds a body for each point it plans (20000 of them), where the
         public function's validation took two thirds of the time."""
         if np.ndim(t) == 0:
-            w = np.concatenate([self.omega_at(t), (0.0,)]) @ self.frame.T
+            w = self._in_scene(self.omega_at(t))
         else:
             w = self.omega_scene(np.asarray(t, dtype=float))
         return float(0.5 * w @ self.tensor @ w)
